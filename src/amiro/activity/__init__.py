@@ -1,0 +1,1 @@
+"""Activity recognition: skeletons, normalisation, the multi-stage LSTM model."""

@@ -1,0 +1,43 @@
+"""Behaviour composition: task graphs, their YAML form, the engine and event handlers."""
+
+from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, EngineConfig, GraphRun, RunStatus
+from amiro.behavior.graph import COMPLETED, FAILED, Edge, End, TaskGraph, TaskNode
+from amiro.behavior.handlers import HandlerError, HandlerFactory, HandlerRegistry, yaml_handler
+from amiro.behavior.loader import load_behavior, load_behavior_data, loads_behavior
+from amiro.behavior.task import (
+    Task,
+    TaskContext,
+    TaskError,
+    TaskRecord,
+    TaskStatus,
+    make_task,
+    task_types,
+)
+
+__all__ = [
+    "COMPLETED",
+    "EVENTS_TOPIC",
+    "FAILED",
+    "BehaviorEngine",
+    "Edge",
+    "End",
+    "EngineConfig",
+    "GraphRun",
+    "HandlerError",
+    "HandlerFactory",
+    "HandlerRegistry",
+    "RunStatus",
+    "Task",
+    "TaskContext",
+    "TaskError",
+    "TaskGraph",
+    "TaskNode",
+    "TaskRecord",
+    "TaskStatus",
+    "load_behavior",
+    "load_behavior_data",
+    "loads_behavior",
+    "make_task",
+    "task_types",
+    "yaml_handler",
+]

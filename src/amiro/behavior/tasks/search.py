@@ -1,0 +1,131 @@
+"""Search: look for a named person by turning the head, then the base, then other rooms.
+
+Perception is always on (paper, section 3): the person may be recognised at any moment,
+including while the robot drives between rooms.  The person's map position and room go to
+the blackboard as ``person_position`` and ``person_room`` for the MoveTo that follows.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from typing import Any
+
+from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.behavior.tasks.gaze import point_head
+from amiro.core.bus import GoalHandle
+from amiro.core.messages import Point, Pose2D
+from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToGoal
+
+HEAD_SWEEP = (0.0, 0.9, -0.9, 1.8, -1.8)  # rad: centre, then wider on each side
+
+
+class Search(Task):
+    """params: ``person``; ``dwell_s`` per head position (default 1.2); ``sightings`` needed
+    (default 2).  Fails with ``not_found`` after every room has been looked at."""
+
+    type_name = "Search"
+    cancellable = True
+
+    def start(self, ctx: TaskContext) -> None:
+        p = self.resolved(ctx)
+        self.person = str(p["person"])
+        self.dwell = float(p.get("dwell_s", 1.2))
+        self.needed = int(p.get("sightings", 2))
+        self.world = ctx.module("world")
+        self.sightings: list[Point] = []
+        self.visited: set[str] = set()
+        self.steps: deque[tuple[str, Any]] = deque()
+        self.goal: GoalHandle[MoveToGoal, Any, Any] | None = None
+        self.step_until = ctx.now()
+        self._look_around(ctx, turn=True)
+        self.detail = {"rooms": []}
+
+    def _pose(self, ctx: TaskContext) -> Pose2D | None:
+        pose: Pose2D | None = ctx.module("navigation").pose
+        return pose
+
+    def _look_around(self, ctx: TaskContext, turn: bool) -> None:
+        pose = self._pose(ctx)
+        if pose is not None:
+            room = self.world.room_at(pose.x, pose.y)
+            if room is not None:
+                self.visited.add(room)
+        self.steps.extend(("head", yaw) for yaw in HEAD_SWEEP)
+        if turn:
+            self.steps.append(("turn", math.pi))
+            self.steps.extend(("head", yaw) for yaw in HEAD_SWEEP[1:])
+        self.steps.append(("head", 0.0))
+
+    def _next_room(self, ctx: TaskContext) -> str | None:
+        pose = self._pose(ctx)
+        todo = [r for r in self.world.room_names() if r not in self.visited]
+        if not todo or pose is None:
+            return None
+        return str(min(todo, key=lambda r: pose.distance_to(self.world.place(r))))
+
+    def _start_step(self, ctx: TaskContext) -> bool:
+        """Begin the next search step; False when there is nothing left to try."""
+        if not self.steps:
+            room = self._next_room(ctx)
+            if room is None:
+                return False
+            self.visited.add(room)
+            self.detail["rooms"].append(room)
+            ctx.event("search_room", room=room, person=self.person)
+            self.steps.append(("goto", room))
+        kind, arg = self.steps.popleft()
+        if kind == "head":
+            point_head(ctx, float(arg))
+            self.step_until = ctx.now() + self.dwell
+        elif kind == "turn":
+            pose = self._pose(ctx)
+            if pose is not None:
+                target = Pose2D(pose.x, pose.y, pose.theta + float(arg))
+                self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(pose=target))
+        else:
+            point_head(ctx, 0.0)
+            self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place=str(arg)))
+        return True
+
+    def update(self, ctx: TaskContext) -> TaskStatus:
+        for seen in ctx.module("perception").look():
+            if seen.name == self.person:
+                self.sightings.append(seen.position)
+        if len(self.sightings) >= self.needed:
+            self._stop_motion()
+            mid = len(self.sightings) // 2
+            xs, ys, zs = (
+                sorted(axis)
+                for axis in zip(*((p.x, p.y, p.z) for p in self.sightings), strict=True)
+            )
+            position = Point(xs[mid], ys[mid], zs[mid])
+            room = self.world.room_at(position.x, position.y)
+            ctx.blackboard["person_position"] = position
+            ctx.blackboard["person_room"] = room
+            self.detail.update(
+                {"position": [round(position.x, 2), round(position.y, 2)], "room": room}
+            )
+            ctx.event("person_found", person=self.person, room=room)
+            return TaskStatus.SUCCESS
+        if self.goal is not None:
+            if not self.goal.done:
+                return TaskStatus.RUNNING
+            was_goto = self.goal.goal.place is not None
+            self.goal = None
+            if was_goto:
+                self._look_around(ctx, turn=False)
+        elif ctx.now() < self.step_until:
+            return TaskStatus.RUNNING
+        if not self._start_step(ctx):
+            self.detail["reason"] = "not_found"
+            return TaskStatus.FAILURE
+        return TaskStatus.RUNNING
+
+    def _stop_motion(self) -> None:
+        if self.goal is not None and not self.goal.done:
+            self.goal.cancel()
+        self.goal = None
+
+    def cancel(self, ctx: TaskContext) -> None:
+        self._stop_motion()

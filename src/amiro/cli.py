@@ -1,0 +1,69 @@
+"""The ``amiro`` command line.
+
+Every command has ``--help``; with ``--json`` it prints exactly one JSON object on stdout
+(logs go to stderr).  Bad input exits with code 2 and one line on stderr, no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from amiro import __version__
+from amiro.core.config import ConfigError
+
+Command = Callable[[argparse.Namespace], int]
+
+
+class UsageError(ConfigError):
+    """Bad command-line input: reported in one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> Any:  # argparse prints usage + exits 2; keep it one line
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    import amiro.evaluation.bench_cli as bench_cli
+    import amiro.scenarios.cli as scenarios_cli
+
+    parser = _Parser(
+        prog="amiro",
+        description="amiro: an open framework for assistive social robots.",
+    )
+    parser.add_argument("--version", action="version", version=f"amiro {__version__}")
+    parser.add_argument("-v", "--verbose", action="store_true", help="debug logging on stderr")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    scenarios_cli.register(sub)
+    bench_cli.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=logging.DEBUG if args.verbose else logging.WARNING,
+        format="%(levelname)s %(name)s: %(message)s",
+        stream=sys.stderr,
+    )
+    handler: Command | None = getattr(args, "handler", None)
+    if handler is None:
+        parser.print_help()
+        return 2
+    try:
+        return handler(args)
+    except ConfigError as exc:
+        print(f"amiro: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("amiro: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Core: bus, messages, clock, configuration, nodes and their supervision."""

@@ -1,0 +1,36 @@
+"""Per-language phrase templates: answers come in the listener's language."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from functools import cache
+from importlib import resources
+from typing import Any
+
+import yaml
+
+from amiro.core.config import ConfigError
+
+LANGUAGES = ("en", "ro", "fr")
+
+
+@cache
+def _table() -> dict[str, dict[str, str]]:
+    text = resources.files("amiro").joinpath("data/dialogue/phrases.yaml").read_text("utf-8")
+    data: dict[str, dict[str, str]] = yaml.safe_load(text)
+    return data
+
+
+def check_language(lang: str) -> str:
+    if lang not in LANGUAGES:
+        raise ConfigError(f"unknown language '{lang}' (choices: {', '.join(LANGUAGES)})")
+    return lang
+
+
+def phrase(key: str, lang: str, fields: Mapping[str, Any] | None = None) -> str:
+    """The phrase ``key`` in ``lang`` with ``{fields}`` filled in."""
+    entry = _table().get(key)
+    if entry is None:
+        raise KeyError(f"no phrase named '{key}'")
+    template = entry.get(check_language(lang)) or entry["en"]
+    return template.format_map(dict(fields or {}))

@@ -1,0 +1,1 @@
+"""Smart environment and health: sensors, rules, notifications and acknowledgements."""

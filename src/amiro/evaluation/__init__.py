@@ -1,0 +1,1 @@
+"""Evaluations and benchmarks: each module measured, the paper's figure beside ours."""

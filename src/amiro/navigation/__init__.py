@@ -1,0 +1,1 @@
+"""Navigation: costmaps, global planning, path following and the MoveTo action."""

@@ -1,0 +1,23 @@
+"""Configuration of the navigation stack (the ``navigation:`` section)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field
+
+from amiro.core.config import Section
+
+
+class NavigationConfig(Section):
+    map: Path | None = Field(default=None, description="map_server YAML; None: the home's map")
+    localization: Literal["oracle"] = Field(
+        default="oracle", description="oracle: the simulator's true pose (until AMCL lands)"
+    )
+    planning_resolution: float = Field(default=0.1, gt=0.0)
+    robot_radius: float = Field(default=0.25, gt=0.0)
+    safety_margin: float = Field(default=0.08, ge=0.0)
+    max_speed: float = Field(default=0.35, gt=0.0)
+    max_turn: float = Field(default=1.0, gt=0.0)
+    control_hz: float = Field(default=10.0, gt=0.0)

@@ -1,0 +1,93 @@
+"""Global planning on a costmap: to a pose, or to the best spot near a person."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from amiro.core.messages import Point, Pose2D
+from amiro.navigation.astar import Cell, astar, prune
+from amiro.navigation.costmap import Costmap
+
+_BERTH_M = 0.12  # shortcuts stay this much further from obstacles than the lethal zone
+
+
+class GlobalPlanner:
+    def __init__(self, costmap: Costmap) -> None:
+        self.costmap = costmap
+
+    def _to_poses(self, cells: list[Cell], final_theta: float) -> list[Pose2D]:
+        frame = self.costmap.frame
+        # Shortcuts must keep a wider berth than the lethal zone: Pepper's arms swing out.
+        berth = self.costmap.clearance < self.costmap.inscribed + _BERTH_M
+        pts = [frame.to_world(r, c) for r, c in prune(cells, berth)]
+        poses = []
+        for i, (x, y) in enumerate(pts):
+            if i + 1 < len(pts):
+                nx, ny = pts[i + 1]
+                theta = math.atan2(ny - y, nx - x)
+            else:
+                theta = final_theta
+            poses.append(Pose2D(x, y, theta))
+        return poses
+
+    def _start_cell(self, start: Pose2D) -> Cell | None:
+        """The robot's cell, or the nearest free one when it stands inside an inflation zone."""
+        frame = self.costmap.frame
+        cell = frame.to_cell(start.x, start.y)
+        if not frame.inside(*cell):
+            return None
+        lethal = self.costmap.lethal
+        if not lethal[cell]:
+            return cell
+        r0, c0 = cell
+        reach = math.ceil(0.3 / frame.resolution)
+        best: tuple[float, Cell] | None = None
+        for r in range(max(0, r0 - reach), min(frame.height, r0 + reach + 1)):
+            for c in range(max(0, c0 - reach), min(frame.width, c0 + reach + 1)):
+                if not lethal[r, c]:
+                    d = (r - r0) ** 2 + (c - c0) ** 2
+                    if best is None or d < best[0]:
+                        best = (d, (r, c))
+        return None if best is None else best[1]
+
+    def plan_to_pose(self, start: Pose2D, goal: Pose2D) -> list[Pose2D] | None:
+        s = self._start_cell(start)
+        g = self.costmap.frame.to_cell(goal.x, goal.y)
+        if s is None or not self.costmap.frame.inside(*g):
+            return None
+        cells = astar(self.costmap.lethal, self.costmap.cost, s, {g})
+        if cells is None:
+            return None
+        path = self._to_poses(cells, goal.theta)
+        path[-1] = goal
+        return path
+
+    def plan_near(
+        self, start: Pose2D, target: Point, approach: float, tolerance: float = 0.25
+    ) -> list[Pose2D] | None:
+        """Path to any free spot ``approach`` (± tolerance) metres from ``target``, facing it."""
+        s = self._start_cell(start)
+        if s is None:
+            return None
+        frame = self.costmap.frame
+        res = frame.resolution
+        tr, tc = frame.to_cell(target.x, target.y)
+        reach = math.ceil((approach + tolerance) / res)
+        rows = np.arange(tr - reach, tr + reach + 1)
+        cols = np.arange(tc - reach, tc + reach + 1)
+        rr, cc = np.meshgrid(rows, cols, indexing="ij")
+        dist = np.hypot(rr - tr, cc - tc) * res
+        ring = np.abs(dist - approach) <= tolerance
+        inside = (rr >= 0) & (rr < frame.height) & (cc >= 0) & (cc < frame.width)
+        ring &= inside
+        goals = {(int(r), int(c)) for r, c in zip(rr[ring], cc[ring], strict=True)}
+        cells = astar(self.costmap.lethal, self.costmap.cost, s, goals)
+        if cells is None:
+            return None
+        gx, gy = frame.to_world(*cells[-1])
+        facing = math.atan2(target.y - gy, target.x - gx)
+        path = self._to_poses(cells, facing)
+        path[-1] = Pose2D(gx, gy, facing)
+        return path

@@ -1,0 +1,1 @@
+"""Scenarios shipped with amiro: the paper's hydration scenario and others."""

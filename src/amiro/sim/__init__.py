@@ -1,0 +1,1 @@
+"""The simulated apartment, the robot body and sensors, and the residents."""
