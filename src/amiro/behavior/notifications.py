@@ -81,3 +81,6 @@ class NotificationHandlerNode(Node):
     def _ack(self, ident: str, status: str) -> None:
         clock = self.runtime.clock
         self.ack_pub.publish(Acknowledgement(ident, status, clock.iso(self.now())))
+        self.events.publish(
+            BehaviorEvent(self.now(), "ack", detail={"id": ident, "status": status})
+        )

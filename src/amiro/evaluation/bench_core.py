@@ -72,10 +72,23 @@ def bench_sim(sim_seconds: float = 60.0) -> dict[str, float]:
     }
 
 
+def bench_lidar(scans: int = 300) -> float:
+    """Milliseconds per 360-beam scan of the default apartment, from poses across it."""
+    rt = Runtime(seed=1)
+    sim = build_sim(rt, SimConfig())
+    grid, lidar = sim.world.live, sim.robot.lidar
+    poses = [sim.world.place(name) for name in sim.world.home.places]
+    start = wall_seconds()
+    for i in range(scans):
+        lidar.scan(grid, poses[i % len(poses)], 0.0, rt.rng)
+    return (wall_seconds() - start) * 1000.0 / scans
+
+
 def bench_core() -> dict[str, Any]:
     out: dict[str, Any] = {
         "bus_msgs_per_s": round(bench_bus()),
         "engine_dispatches_per_s": round(bench_engine()),
     }
     out.update({k: round(v, 1) for k, v in bench_sim().items()})
+    out["lidar_ms_per_scan"] = round(bench_lidar(), 3)
     return out

@@ -148,7 +148,9 @@ class Costmap:
         rows = np.floor((ys - self.frame.origin_y) / self.frame.resolution).astype(int)
         cols = np.floor((xs - self.frame.origin_x) / self.frame.resolution).astype(int)
         inside = (rows >= 0) & (rows < self.frame.height) & (cols >= 0) & (cols < self.frame.width)
-        rows, cols = rows[inside], cols[inside]
+        # several beams often end in one cell: count (and mark) each cell once
+        cells = np.unique(rows[inside] * self.frame.width + cols[inside])
+        rows, cols = np.divmod(cells, self.frame.width)
         new = ~(self.static[rows, cols] | self.observed[rows, cols])
         if not new.any():
             return 0

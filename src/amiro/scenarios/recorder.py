@@ -8,9 +8,8 @@ from typing import Any, TextIO
 
 from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.tasks.notify import ACK_TOPIC
-from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
+from amiro.core.messages import Acknowledgement, BehaviorEvent
 from amiro.core.runtime import Runtime
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
 
 
 class EventRecorder:
@@ -23,8 +22,7 @@ class EventRecorder:
         self.live = live
         bus = runtime.bus
         bus.subscribe(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=10_000)
-        bus.subscribe(NOTIFICATIONS_TOPIC, Notification, self._on_notification, depth=1000)
-        bus.subscribe(ACK_TOPIC, Acknowledgement, self._on_ack, depth=1000)
+        bus.subscribe(ACK_TOPIC, Acknowledgement, self.acks.append, depth=1000)
 
     def _add(self, event: dict[str, Any]) -> None:
         self.events.append(event)
@@ -34,25 +32,6 @@ class EventRecorder:
 
     def _on_event(self, ev: BehaviorEvent) -> None:
         self._add(ev.to_dict())
-
-    def _on_notification(self, note: Notification) -> None:
-        t = round(self.runtime.clock.now(), 3)
-        self._add(
-            {
-                "t": t,
-                "type": "environment_alert",
-                "id": note.id,
-                "kind": note.kind,
-                "user": note.user,
-                "priority": note.priority,
-                "reason": note.reason,
-            }
-        )
-
-    def _on_ack(self, ack: Acknowledgement) -> None:
-        self.acks.append(ack)
-        t = round(self.runtime.clock.now(), 3)
-        self._add({"t": t, "type": "ack_published", "id": ack.id, "status": ack.status})
 
 
 def _details(detail: dict[str, Any]) -> str:
@@ -65,9 +44,8 @@ def _task_line(ev: dict[str, Any]) -> str:
 
 
 _NARRATION: dict[str, Callable[[dict[str, Any]], str]] = {
-    "environment_alert": lambda e: (
-        f"Alert from the smart home: {e['reason']} → {e['kind']}"
-        f" reminder for {e['user']} (priority {e['priority']})"
+    "notification": lambda e: (
+        f"Alert: {e.get('reason') or e.get('kind')} → {e.get('kind')} reminder for {e.get('user')}"
     ),
     "graph_submitted": lambda e: (
         f"Behaviour {e.get('graph')} queued (priority {e.get('priority')})"
@@ -88,7 +66,7 @@ _NARRATION: dict[str, Callable[[dict[str, Any]], str]] = {
     "person_found": lambda e: f"    found {e.get('person')} in the {e.get('room')}",
     "search_room": lambda e: f"    not seen here; going to look in the {e.get('room')}",
     "activity_recognised": lambda e: f"    saw {e.get('person')} {e.get('activity')}",
-    "ack_published": lambda e: f"Acknowledged {e['id']} to the smart home: {e['status']}",
+    "ack": lambda e: f"    acknowledged {e.get('id')} to the smart home: {e.get('status')}",
 }
 
 
