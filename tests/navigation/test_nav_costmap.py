@@ -41,7 +41,7 @@ def test_frame_round_trip() -> None:
     frame = GridFrame(RES, -0.5, 0.25, 30, 20)
     assert frame.to_cell(-0.45, 0.3) == (0, 0)
     assert frame.to_cell(1.04, 2.06) == (18, 15)
-    assert frame.to_world(18, 15) == pytest.approx((1.05, 2.05))
+    assert frame.to_world(18, 15) == pytest.approx((1.05, 2.1))
     assert frame.inside(29, 19) and not frame.inside(30, 0) and not frame.inside(0, -1)
 
 
@@ -133,20 +133,21 @@ def test_clearance_and_the_way_out_point_away_from_walls() -> None:
     cm.static[:, :3] = True  # left wall, cells x in [-0.5, -0.2)
     cm._dirty = True
     # 1 m right of the wall's last cell centre (x = -0.25)
-    assert cm.clearance_at(0.75, 1.5) == pytest.approx(1.0)
-    gx, gy = cm.away_from_obstacles(0.05, 1.5)
+    assert cm.clearance_at(0.77, 1.53) == pytest.approx(1.0)
+    gx, gy = cm.away_from_obstacles(0.07, 1.53)
     assert gx == pytest.approx(1.0, abs=1e-6) and gy == pytest.approx(0.0, abs=1e-6)
     cm.static[:, :3] = False
     cm.static[37:, :] = True  # top wall (high y)
     cm._dirty = True
-    gx, gy = cm.away_from_obstacles(1.5, 2.9)
+    gx, gy = cm.away_from_obstacles(1.53, 2.93)
     assert gx == pytest.approx(0.0, abs=1e-6) and gy == pytest.approx(-1.0, abs=1e-6)
-    assert cm.clearance_at(1.5, 2.9) < cm.clearance_at(1.5, 2.0)
-    # into a corner: the way out points diagonally away from both walls
+    assert cm.clearance_at(1.53, 2.93) < cm.clearance_at(1.53, 2.03)
+    # in a corner, 5 cells from both walls: the way out is diagonal, away from both
     cm.static[:, :3] = True
     cm._dirty = True
-    gx, gy = cm.away_from_obstacles(0.1, 2.5)
-    assert gx > 0.3 and gy < -0.3 and math.hypot(gx, gy) == pytest.approx(1.0)
+    assert cm.frame.to_cell(0.27, 2.77) == (32, 7)
+    gx, gy = cm.away_from_obstacles(0.27, 2.77)
+    assert (gx, gy) == pytest.approx((math.sqrt(0.5), -math.sqrt(0.5)))
     # outside the map: no clearance, no direction
     assert cm.clearance_at(-5.0, 0.0) == 0.0
     assert cm.away_from_obstacles(-5.0, 0.0) == (0.0, 0.0)
