@@ -13,10 +13,17 @@ from amiro.navigation.costmap import Costmap, GridFrame, downsample
 RES = 0.1
 
 
-def _costmap(h: int = 40, w: int = 40, ox: float = -0.5, oy: float = -0.5) -> Costmap:
-    frame = GridFrame(RES, ox, oy, h, w)
+def _costmap(static: np.ndarray | None = None) -> Costmap:
+    """40 x 40 cells of 0.1 m, origin (-0.5, -0.5)."""
+    if static is None:
+        static = np.zeros((40, 40), dtype=bool)
+    frame = GridFrame(RES, -0.5, -0.5, *static.shape)
     # inscribed radius 0.35 m = 3.5 cells: no cell centre lies exactly on it
-    return Costmap(np.zeros((h, w), dtype=bool), frame, robot_radius=0.25, safety_margin=0.1)
+    return Costmap(static, frame, robot_radius=0.25, safety_margin=0.1)
+
+
+def _grid() -> np.ndarray:
+    return np.zeros((40, 40), dtype=bool)
 
 
 def _scan(angles_rel: list[float], ranges: list[float], range_min: float = 0.15) -> LaserScan:
@@ -46,9 +53,9 @@ def test_frame_round_trip() -> None:
 
 
 def test_inflation_radius_is_robot_radius_plus_margin() -> None:
-    cm = _costmap()
-    cm.static[20, 20] = True
-    cm._dirty = True
+    static = _grid()
+    static[20, 20] = True
+    cm = _costmap(static)
     rr, cc = np.mgrid[0:40, 0:40]
     d2 = (rr - 20) ** 2 + (cc - 20) ** 2
     within = d2 * RES**2 < cm.inscribed**2
@@ -60,9 +67,9 @@ def test_inflation_radius_is_robot_radius_plus_margin() -> None:
 
 
 def test_soft_cost_is_one_inside_and_decays_with_distance() -> None:
-    cm = _costmap()
-    cm.static[:, :3] = True  # a wall along the left edge
-    cm._dirty = True
+    static = _grid()
+    static[:, :3] = True  # a wall along the left edge
+    cm = _costmap(static)
     row = cm.cost[20]
     lethal = cm.lethal[20]
     assert np.all(row[lethal] == pytest.approx(1.0))
@@ -95,9 +102,9 @@ def test_mark_scan_marks_hits_at_the_right_cells() -> None:
 
 
 def test_mark_scan_ignores_far_hits_and_known_obstacles() -> None:
-    cm = _costmap()
-    cm.static[15, 25] = True
-    cm._dirty = True
+    static = _grid()
+    static[15, 25] = True
+    cm = _costmap(static)
     pose = Pose2D(1.03, 1.07, 0.0)
     scan = _scan([0.0, math.pi / 2], [1.0, 4.5])  # known wall ahead, 4.5 m > max_range 4
     assert cm.mark_scan(scan, pose) == 0
@@ -115,10 +122,24 @@ def test_mark_scan_counts_cells_not_beams() -> None:
     assert cm.mark_scan(scan, Pose2D(1.05, 1.05, 0.0)) == int(cm.observed.sum()) == 1
 
 
+def test_range_noise_in_front_of_a_mapped_wall_is_not_an_obstacle() -> None:
+    static = _grid()
+    static[:, 30] = True  # a wall at x in [2.5, 2.6)
+    cm = _costmap(static)
+    pose = Pose2D(0.53, 1.07, 0.0)
+    # wall returns 0.03 and 0.07 m short of the wall face (x = 2.5), in the cell in front
+    # of it: range noise, not obstacles
+    assert cm.mark_scan(_scan([0.0, 0.1], [1.94, 1.90 / math.cos(0.1)]), pose) == 0
+    assert not cm.observed.any()
+    # something 0.4 m in front of the wall is new
+    assert cm.mark_scan(_scan([0.0], [1.57]), pose) == 1
+    assert cm.observed[15, 26]
+
+
 def test_clear_observed_restores_the_static_costmap() -> None:
-    cm = _costmap()
-    cm.static[5, 5] = True
-    cm._dirty = True
+    static = _grid()
+    static[5, 5] = True
+    cm = _costmap(static)
     static_lethal = cm.lethal.copy()
     assert cm.mark_scan(_scan([0.0], [1.0]), Pose2D(1.03, 1.07, 0.0)) == 1
     assert cm.lethal.sum() > static_lethal.sum()
@@ -129,22 +150,21 @@ def test_clear_observed_restores_the_static_costmap() -> None:
 
 
 def test_clearance_and_the_way_out_point_away_from_walls() -> None:
-    cm = _costmap()
-    cm.static[:, :3] = True  # left wall, cells x in [-0.5, -0.2)
-    cm._dirty = True
+    static = _grid()
+    static[:, :3] = True  # left wall, cells x in [-0.5, -0.2)
+    cm = _costmap(static)
     # 1 m right of the wall's last cell centre (x = -0.25)
     assert cm.clearance_at(0.77, 1.53) == pytest.approx(1.0)
     gx, gy = cm.away_from_obstacles(0.07, 1.53)
     assert gx == pytest.approx(1.0, abs=1e-6) and gy == pytest.approx(0.0, abs=1e-6)
-    cm.static[:, :3] = False
-    cm.static[37:, :] = True  # top wall (high y)
-    cm._dirty = True
+    top = _grid()
+    top[37:, :] = True  # top wall (high y)
+    cm = _costmap(top)
     gx, gy = cm.away_from_obstacles(1.53, 2.93)
     assert gx == pytest.approx(0.0, abs=1e-6) and gy == pytest.approx(-1.0, abs=1e-6)
     assert cm.clearance_at(1.53, 2.93) < cm.clearance_at(1.53, 2.03)
     # in a corner, 5 cells from both walls: the way out is diagonal, away from both
-    cm.static[:, :3] = True
-    cm._dirty = True
+    cm = _costmap(static | top)
     assert cm.frame.to_cell(0.27, 2.77) == (32, 7)
     gx, gy = cm.away_from_obstacles(0.27, 2.77)
     assert (gx, gy) == pytest.approx((math.sqrt(0.5), -math.sqrt(0.5)))

@@ -96,7 +96,8 @@ def test_start_inside_the_inflation_zone_still_plans() -> None:
 
 
 @pytest.mark.parametrize(
-    ("target", "approach"), [(Point(4.55, 3.05), 1.0), (Point(1.55, 1.55), 0.8), (Point(5.65, 0.35), 1.2)]
+    ("target", "approach"),
+    [(Point(4.55, 3.05), 1.0), (Point(1.55, 1.55), 0.8), (Point(5.65, 0.35), 1.2)],
 )
 def test_plan_near_stops_at_the_approach_distance_facing_the_target(
     target: Point, approach: float

@@ -67,6 +67,7 @@ class Costmap:
         robot_radius: float = 0.25,
         safety_margin: float = 0.1,
         decay_m: float = 0.35,
+        hit_tolerance: float = 0.2,
     ) -> None:
         self.frame = frame
         self.static = static.copy()
@@ -74,10 +75,13 @@ class Costmap:
         self.robot_radius = robot_radius
         self.safety_margin = safety_margin
         self.decay_m = decay_m
+        # lidar hits this close to a mapped obstacle are that obstacle seen with range noise
+        self.hit_tolerance = hit_tolerance
         self._dirty = True
         self._lethal: BoolGrid = np.zeros_like(static)
         self._cost: FloatGrid = np.zeros(static.shape)
         self._clearance: FloatGrid = np.zeros(static.shape)
+        self._static_clearance: FloatGrid = np.zeros(static.shape)
         self._gradient: tuple[FloatGrid, FloatGrid] = (self._cost, self._cost)
 
     def _update(self) -> None:
@@ -85,6 +89,8 @@ class Costmap:
         dist = ndimage.distance_transform_edt(~obstacles) * self.frame.resolution
         inscribed = self.inscribed
         self._clearance = dist
+        static_dist = ndimage.distance_transform_edt(~self.static)
+        self._static_clearance = static_dist * self.frame.resolution
         grad_rows, grad_cols = np.gradient(dist)
         self._gradient = (np.asarray(grad_cols), np.asarray(grad_rows))
         self._lethal = dist < inscribed
@@ -137,7 +143,14 @@ class Costmap:
         return self._cost
 
     def mark_scan(self, scan: LaserScan, pose: Pose2D, max_range: float = 4.0) -> int:
-        """Mark lidar hits not already in the map; returns how many new cells were marked."""
+        """Mark lidar hits not already in the map; returns how many new cells were marked.
+
+        Hits within ``hit_tolerance`` of a mapped obstacle are not marked: range noise
+        scatters the returns of walls in front of them, and marking those would narrow
+        doorways until the planner finds them shut.
+        """
+        if self._dirty:
+            self._update()
         ranges = scan.ranges
         ok = np.isfinite(ranges) & (ranges < max_range) & (ranges > scan.range_min)
         if not ok.any():
@@ -151,7 +164,7 @@ class Costmap:
         # several beams often end in one cell: count (and mark) each cell once
         cells = np.unique(rows[inside] * self.frame.width + cols[inside])
         rows, cols = np.divmod(cells, self.frame.width)
-        new = ~(self.static[rows, cols] | self.observed[rows, cols])
+        new = ~self.observed[rows, cols] & (self._static_clearance[rows, cols] > self.hit_tolerance)
         if not new.any():
             return 0
         self.observed[rows[new], cols[new]] = True

@@ -135,14 +135,16 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
     def canceled_result(
         self, handle: GoalHandle[MoveToGoal, MoveToFeedback, MoveToResult]
     ) -> MoveToResult:
-        travelled = self.active.travelled if self.active else 0.0
+        active = self.active
+        travelled = active.travelled if active is not None and active.handle is handle else 0.0
         return MoveToResult(False, "canceled", travelled, self.pose)
 
     def cancel(self, handle: GoalHandle[MoveToGoal, MoveToFeedback, MoveToResult]) -> None:
+        result = self.canceled_result(handle)  # before the goal's progress is dropped
         if self.active is not None and self.active.handle is handle:
             self.cmd_pub.publish(Twist())
             self.active = None
-        handle.canceled(self.canceled_result(handle))
+        handle.canceled(result)
 
     # --- planning and control -----------------------------------------------------------
     def _plan(self, goal: MoveToGoal, pose: Pose2D) -> list[Pose2D] | None:
@@ -181,6 +183,7 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
             active.travelled += active.last_pose.distance_to(pose)
         active.last_pose = pose
         if self.emergency_stop:
+            active.progress_time = self.now()  # held still on purpose: not "no progress"
             self.cmd_pub.publish(Twist())
             return
         if self.now() < active.backoff_until:
