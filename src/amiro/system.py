@@ -10,12 +10,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Literal
+from typing import Any
 
 from pydantic import Field
 
 import amiro.behavior.tasks  # noqa: F401 - registers the task types
-from amiro.activity.oracle import OracleActivityRecognizer
+from amiro.activity.config import ActivityConfig
+from amiro.activity.fall import FallMonitorNode
+from amiro.activity.stack import build_activity_recognizer
 from amiro.behavior.engine import BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry, yaml_handler
 from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
@@ -23,36 +25,25 @@ from amiro.core.clock import Clock, SimClock
 from amiro.core.config import ConfigError, Section
 from amiro.core.gridmap import load_map
 from amiro.core.runtime import Runtime
-from amiro.dialogue.oracle import OracleUnderstanding
-from amiro.dialogue.output import BusSpeechOutput
+from amiro.dialogue.config import DialogueConfig
+from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.stack import Dialogue, build_dialogue
 from amiro.environment.rules import RulesNode, ThresholdRule
 from amiro.environment.simulated import SimulatedSensorsConfig, SimulatedSensorsNode
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MoveToNode
 from amiro.navigation.stack import build_navigation
-from amiro.perception.oracle import OraclePeopleFinder
+from amiro.perception.config import PerceptionConfig
+from amiro.perception.stack import build_people_finder
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.world import default_home_path
 
+SHIPPED_BEHAVIORS = ("hydration", "fall", "go_to")
+
 
 def shipped_behavior(name: str) -> Path:
     return Path(str(resources.files("amiro").joinpath(f"data/behaviors/{name}.yaml")))
-
-
-class PerceptionConfig(Section):
-    backend: Literal["oracle"] = "oracle"
-    position_noise_m: float = Field(default=0.1, ge=0.0)
-
-
-class ActivityConfig(Section):
-    backend: Literal["oracle"] = "oracle"
-    accuracy: float = Field(default=0.95, ge=0.0, le=1.0)
-
-
-class DialogueConfig(Section):
-    nlu: Literal["oracle"] = "oracle"
-    words_per_second: float = Field(default=2.5, gt=0.0)
 
 
 HOT_ROOM = ThresholdRule(
@@ -95,6 +86,7 @@ class System:
     notifications: NotificationHandlerNode
     sensors: SimulatedSensorsNode
     rules: RulesNode
+    dialogue: Dialogue
 
     def start(self) -> None:
         self.runtime.start()
@@ -103,7 +95,7 @@ class System:
         self.runtime.stop()
 
 
-def _nav_map_path(cfg: SystemConfig) -> Path:
+def nav_map_path(cfg: SystemConfig) -> Path:
     if cfg.navigation.map is not None:
         return cfg.navigation.map
     return (cfg.sim.home or default_home_path()).with_name("map.yaml")
@@ -115,25 +107,40 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     sim = build_sim(runtime, cfg.sim)
     world = sim.world
     places = {name: world.place(name) for name in world.home.places}
-    navigation = runtime.add(build_navigation(load_map(_nav_map_path(cfg)), places, cfg.navigation))
+    navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
 
     rng_perception, rng_activity = runtime.rng.spawn(2)
-    modules = {
-        "clock": runtime.clock,
-        "world": world,
-        "navigation": navigation,
-        "perception": OraclePeopleFinder(sim, rng_perception, cfg.perception.position_noise_m),
-        "activity": OracleActivityRecognizer(sim, rng_activity, cfg.activity.accuracy),
-        "speech": BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second),
-        "nlu": OracleUnderstanding(),
+    voices = {
+        r.name: SpeakerProfile.model_validate({"lang": r.language}) for r in cfg.sim.residents
     }
+    modules: dict[str, Any] = {}  # filled below; the engine keeps this very dict
     engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
     handlers = HandlerRegistry(engine)
-    behaviors = {"hydration": shipped_behavior("hydration"), **cfg.behavior.handlers}
+
+    def submit(kind: str, payload: dict[str, Any]) -> object:
+        """Dialogue requests (``go_to``) become behaviours."""
+        return engine.submit(handlers.build(kind, payload))
+
+    dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=submit)
+    activity = build_activity_recognizer(sim, rng_activity, cfg.activity)
+    modules.update(
+        {
+            "clock": runtime.clock,
+            "world": world,
+            "navigation": navigation,
+            "perception": build_people_finder(sim, rng_perception, cfg.perception),
+            "activity": activity,
+            "speech": dialogue.speech,
+            "nlu": dialogue.nlu,
+        }
+    )
+    behaviors = {name: shipped_behavior(name) for name in SHIPPED_BEHAVIORS}
+    behaviors.update(cfg.behavior.handlers)
     for kind, path in behaviors.items():
         if not path.is_file():
             raise ConfigError(f"behavior.handlers.{kind}: {path}: no such file")
         handlers.register(kind, yaml_handler(path), replace=True)
+    runtime.add(FallMonitorNode(activity, handlers, lambda: list(sim.residents.residents)))
 
     profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
     notifications = runtime.add(NotificationHandlerNode(engine, handlers, profiles))
@@ -143,4 +150,6 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
         )
     )
     rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
-    return System(cfg, runtime, sim, navigation, engine, handlers, notifications, sensors, rules)
+    return System(
+        cfg, runtime, sim, navigation, engine, handlers, notifications, sensors, rules, dialogue
+    )

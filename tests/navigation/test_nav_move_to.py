@@ -17,14 +17,14 @@ from amiro.core.gridmap import GridMap, load_map
 from amiro.core.messages import Path, Point, Pose2D, String, Twist
 from amiro.core.runtime import Runtime
 from amiro.navigation.config import NavigationConfig
-from amiro.navigation.follower import wrap
+from amiro.sim.geometry import wrap_angle as wrap
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToNode
 from amiro.navigation.stack import GROUND_TRUTH_TOPIC, build_navigation
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.world import default_home_path
 
-CFG = NavigationConfig()
+CFG = NavigationConfig(localization="oracle")
 # the living_door opening (x 4.5..5.4 at y = 3.5) filled wall to wall
 LIVING_DOOR_BOX = [(4.4, 3.3), (5.5, 3.3), (5.5, 3.7), (4.4, 3.7)]
 

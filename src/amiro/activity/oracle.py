@@ -14,6 +14,8 @@ from amiro.sim.simulator import Simulation
 
 
 class OracleActivityRecognizer:
+    box_range: tuple[float, float] | None = None  # the oracle sees as well from anywhere
+
     def __init__(self, sim: Simulation, rng: np.random.Generator, accuracy: float = 0.95) -> None:
         self.sim = sim
         self.rng = rng

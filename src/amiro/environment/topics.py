@@ -2,3 +2,6 @@
 
 SENSORS_TOPIC = "/amiro/env/sensors"
 NOTIFICATIONS_TOPIC = "/amiro/notifications"
+HEALTH_TOPIC = "/amiro/env/health"
+DEVICE_COMMAND_TOPIC = "/amiro/env/devices/set"
+DEVICE_STATE_TOPIC = "/amiro/env/devices/state"

@@ -12,9 +12,17 @@ from amiro.core.config import Section
 
 class NavigationConfig(Section):
     map: Path | None = Field(default=None, description="map_server YAML; None: the home's map")
-    localization: Literal["oracle"] = Field(
-        default="oracle", description="oracle: the simulator's true pose (until AMCL lands)"
+    localization: Literal["amcl", "oracle"] = Field(
+        default="amcl",
+        description="amcl: particle filter on /odom + /scan; oracle: the simulator's true pose",
     )
+    start_place: str | None = Field(
+        default="dock",
+        description="where AMCL starts when no initial pose is given (a robot boots on its "
+        "dock); None: global localisation",
+    )
+    amcl_particles: int = Field(default=500, ge=10, description="most particles (KLD adapts)")
+    amcl_beams: int = Field(default=60, ge=4, description="lidar beams per filter update")
     planning_resolution: float = Field(default=0.1, gt=0.0)
     robot_radius: float = Field(default=0.25, gt=0.0)
     safety_margin: float = Field(default=0.08, ge=0.0)

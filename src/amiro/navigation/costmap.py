@@ -119,6 +119,16 @@ class Costmap:
         cell = self._cell(x, y)
         return 0.0 if cell is None else float(self._clearance[cell])
 
+    def clearance_many(self, xs: FloatGrid, ys: FloatGrid) -> FloatGrid:
+        """Vectorised :meth:`clearance_at` for arrays of points (0 outside the map)."""
+        grid = self.clearance
+        f = self.frame
+        rows = np.floor((ys - f.origin_y) / f.resolution).astype(np.intp)
+        cols = np.floor((xs - f.origin_x) / f.resolution).astype(np.intp)
+        inside = (rows >= 0) & (rows < f.height) & (cols >= 0) & (cols < f.width)
+        out = grid[np.clip(rows, 0, f.height - 1), np.clip(cols, 0, f.width - 1)]
+        return np.where(inside, out, 0.0)
+
     def away_from_obstacles(self, x: float, y: float) -> tuple[float, float]:
         """Unit direction (map frame) in which clearance grows fastest; (0, 0) if flat."""
         if self._dirty:

@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 
 from amiro.core.messages import Pose2D, Twist
+from amiro.sim.geometry import wrap_angle
 
 
 @dataclass(frozen=True)
@@ -21,13 +22,10 @@ class FollowerLimits:
     max_speed: float = 0.35
     max_turn: float = 1.0
     lookahead: float = 0.35
-    goal_tolerance: float = 0.08
+    goal_tolerance: float = 0.04
     heading_tolerance: float = 0.08
-    slow_radius: float = 0.6
-
-
-def wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi
+    slow_radius: float = 0.6  # within this the body turns to the goal heading
+    decel: float = 0.4  # m/s^2 planned braking (below the base's 0.5): stop on the goal
 
 
 def _clamp(v: float, limit: float) -> float:
@@ -87,7 +85,7 @@ class PathFollower:
         goal = self.path[-1]
         dist_goal = pose.distance_to(goal)
         if dist_goal <= lim.goal_tolerance or len(self.path) == 1:
-            err = wrap(goal.theta - pose.theta)
+            err = wrap_angle(goal.theta - pose.theta)
             if abs(err) <= lim.heading_tolerance and dist_goal <= lim.goal_tolerance:
                 return Twist(), True
             vx_map = vy_map = 0.0
@@ -100,14 +98,14 @@ class PathFollower:
         cx, cy = self._carrot(self._segment, t)
         dx, dy = cx - pose.x, cy - pose.y
         dist = math.hypot(dx, dy) or 1e-9
-        speed = max(0.05, lim.max_speed * min(1.0, dist_goal / lim.slow_radius))
+        speed = max(0.05, min(lim.max_speed, math.sqrt(2.0 * lim.decel * dist_goal)))
         heading = math.atan2(dy, dx)
-        facing_error = wrap(heading - pose.theta)
+        facing_error = wrap_angle(heading - pose.theta)
         if abs(facing_error) > 0.6:  # turn first, then go: smooth and predictable
             speed *= 0.3
         vx, vy = _to_robot(pose, speed * dx / dist, speed * dy / dist)
         target_heading = heading if dist_goal > lim.slow_radius else goal.theta
-        wz = _clamp(2.0 * wrap(target_heading - pose.theta), lim.max_turn)
+        wz = _clamp(2.0 * wrap_angle(target_heading - pose.theta), lim.max_turn)
         return Twist.planar(vx, vy, wz), False
 
 

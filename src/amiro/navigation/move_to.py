@@ -15,6 +15,7 @@ from amiro.core.bus import ActionServer, GoalHandle
 from amiro.core.messages import (
     Header,
     LaserScan,
+    Odometry,
     Path,
     Point,
     Pose2D,
@@ -23,12 +24,14 @@ from amiro.core.messages import (
 )
 from amiro.core.node import Node
 from amiro.navigation.costmap import Costmap
+from amiro.navigation.dwa import DwaParams, DynamicWindow
 from amiro.navigation.follower import FollowerLimits, PathFollower
+from amiro.navigation.localization import Localizer, OracleLocalizer
 from amiro.navigation.planner import GlobalPlanner
+from amiro.sim.geometry import wrap_angle
 
 MOVE_TO_ACTION = "/amiro/navigation/move_to"
-_LOOKAHEAD_S = 0.4  # how far ahead the safety check projects the commanded velocity
-_SAFETY_GAP_M = 0.03  # smallest gap kept between the footprint and an obstacle
+EMERGENCY_STOP_TOPIC = "/amiro/emergency_stop"
 _BACKOFF_S = 1.5
 
 
@@ -67,24 +70,30 @@ class _Active:
 
 
 class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
-    """Navigation front end.  ``pose_topic`` is the localisation source (Pose2D in map)."""
+    """Navigation front end: localisation in, A* global plan, DWA local control out."""
 
     def __init__(
         self,
         costmap: Costmap,
         places: dict[str, Pose2D],
-        pose_topic: str = "/amiro/localization/pose",
+        localizer: Localizer | None = None,
         limits: FollowerLimits | None = None,
         control_hz: float = 10.0,
         stuck_after_s: float = 6.0,
         max_recoveries: int = 2,
+        dwa: DwaParams | None = None,
     ) -> None:
         super().__init__("navigation")
         self.costmap = costmap
         self.planner = GlobalPlanner(costmap)
         self.places = places
-        self.pose_topic = pose_topic
+        self.localizer: Localizer = localizer or OracleLocalizer()
         self.limits = limits or FollowerLimits()
+        self.dwa = DynamicWindow(
+            costmap,
+            dwa or DwaParams(max_speed=self.limits.max_speed, max_turn=self.limits.max_turn),
+        )
+        self.velocity = (0.0, 0.0, 0.0)
         self.period = 1.0 / control_hz
         self.stuck_after_s = stuck_after_s
         self.max_recoveries = max_recoveries
@@ -96,15 +105,19 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         self.active = None
         self.cmd_pub = self.create_publisher("/cmd_vel", Twist)
         self.path_pub = self.create_publisher("/amiro/navigation/path", Path)
-        self.create_subscription(self.pose_topic, Pose2D, self._on_pose, depth=1)
+        self.localizer.attach(self, self._on_pose)
+        self.create_subscription("/odom", Odometry, self._on_odom, depth=1)
         self.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
-        self.create_subscription("/amiro/emergency_stop", String, self._on_estop)
+        self.create_subscription(EMERGENCY_STOP_TOPIC, String, self._on_estop)
         self.create_action_server(MOVE_TO_ACTION, self)
         self.create_timer(self.period, self._control)
 
     # --- inputs -------------------------------------------------------------------------
     def _on_pose(self, pose: Pose2D) -> None:
         self.pose = pose
+
+    def _on_odom(self, msg: Odometry) -> None:
+        self.velocity = (msg.twist.linear.x, msg.twist.linear.y, msg.twist.angular.z)
 
     def _on_scan(self, scan: LaserScan) -> None:
         if self.pose is None:
@@ -193,24 +206,9 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         if arrived:
             self._finish(True, "arrived")
             return
-        self.cmd_pub.publish(self._safe(twist, pose))
+        self.cmd_pub.publish(self.dwa.command(pose, self.velocity, twist))
         active.handle.publish_feedback(MoveToFeedback(pose, active.follower.remaining(pose)))
         self._check_progress(active, pose)
-
-    def _safe(self, twist: Twist, pose: Pose2D) -> Twist:
-        """Slow down, or stop translating, rather than bring the footprint onto an obstacle."""
-        c, s = math.cos(pose.theta), math.sin(pose.theta)
-        vx, vy = twist.linear.x, twist.linear.y
-        vx_map, vy_map = c * vx - s * vy, s * vx + c * vy
-        here = self.costmap.clearance_at(pose.x, pose.y)
-        floor = self.costmap.robot_radius + _SAFETY_GAP_M
-        for scale in (1.0, 0.5, 0.25):
-            x = pose.x + scale * vx_map * _LOOKAHEAD_S
-            y = pose.y + scale * vy_map * _LOOKAHEAD_S
-            ahead = self.costmap.clearance_at(x, y)
-            if ahead >= floor or ahead > here:
-                return Twist.planar(scale * vx, scale * vy, twist.angular.z)
-        return Twist.planar(0.0, 0.0, twist.angular.z)
 
     def _backoff(self, pose: Pose2D) -> Twist:
         """Move slowly away from the nearest obstacle (first recovery behaviour)."""
@@ -223,7 +221,11 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         """Recovery when the robot makes no progress: back off from the nearest obstacle,
         clear what the lidar marked, re-plan; give up after ``max_recoveries``."""
         ref = active.progress_pose
-        moved = ref is None or ref.distance_to(pose) > 0.1 or abs(ref.theta - pose.theta) > 0.2
+        moved = (
+            ref is None
+            or ref.distance_to(pose) > 0.1
+            or abs(wrap_angle(ref.theta - pose.theta)) > 0.2
+        )
         if moved:
             active.progress_pose = pose
             active.progress_time = self.now()

@@ -6,14 +6,23 @@ import math
 
 import numpy as np
 
+from amiro.core.config import ConfigError
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
+from amiro.navigation.amcl import AmclParams
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.costmap import Costmap, GridFrame, downsample
 from amiro.navigation.follower import FollowerLimits
+from amiro.navigation.likelihood import LikelihoodField
+from amiro.navigation.localization import (
+    GROUND_TRUTH_TOPIC,
+    AmclLocalizer,
+    Localizer,
+    OracleLocalizer,
+)
 from amiro.navigation.move_to import MoveToNode
 
-GROUND_TRUTH_TOPIC = "/amiro/sim/ground_truth"
+__all__ = ["GROUND_TRUTH_TOPIC", "build_navigation", "costmap_from_map", "make_localizer"]
 
 
 def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
@@ -25,9 +34,35 @@ def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
     return Costmap(blocked, frame, cfg.robot_radius, cfg.safety_margin)
 
 
-def build_navigation(grid: GridMap, places: dict[str, Pose2D], cfg: NavigationConfig) -> MoveToNode:
-    pose_topic = GROUND_TRUTH_TOPIC  # the only localisation so far is the oracle
+def make_localizer(
+    grid: GridMap,
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> Localizer:
+    if cfg.localization == "oracle":
+        return OracleLocalizer(GROUND_TRUTH_TOPIC)
+    params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
+    return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
+
+
+def build_navigation(
+    grid: GridMap,
+    places: dict[str, Pose2D],
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> MoveToNode:
+    """The navigation node.  ``initial_pose`` seeds AMCL; without it, ``cfg.start_place``."""
+    if initial_pose is None and cfg.start_place is not None:
+        if cfg.start_place not in places:
+            raise ConfigError(f"navigation.start_place: no place named {cfg.start_place!r}")
+        initial_pose = places[cfg.start_place]
     limits = FollowerLimits(max_speed=cfg.max_speed, max_turn=min(cfg.max_turn, math.pi))
     return MoveToNode(
-        costmap_from_map(grid, cfg), places, pose_topic, limits, control_hz=cfg.control_hz
+        costmap_from_map(grid, cfg),
+        places,
+        make_localizer(grid, cfg, initial_pose, rng),
+        limits,
+        control_hz=cfg.control_hz,
     )

@@ -45,6 +45,29 @@ def register(sub: Any) -> None:
     add_json_flag(hyd)
     hyd.set_defaults(handler=_run_hydration)
 
+    deliver = scenarios.add_parser(
+        "deliver-notification",
+        help="deliver a notification across the home, re-planning when a door is closed",
+        description="The robot plans (PDDL) a way to Maria in the living room, finds a door "
+        "on the way closed, re-plans, asks John for help or takes another route, and delivers.",
+    )
+    deliver.add_argument("--headless", action="store_true", help="no live log, run at full speed")
+    deliver.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    deliver.add_argument(
+        "--closed-door",
+        action="append",
+        metavar="DOOR",
+        help="a door that is closed (repeat for several; default living_door; 'none' for none)",
+    )
+    deliver.add_argument("--no-help", action="store_true", help="John declines to open the door")
+    deliver.add_argument(
+        "--engine", default="pyperplan", help="planning engine: pyperplan, fast-downward, kairos"
+    )
+    deliver.add_argument("--speed", type=float, default=None, help="as for hydration")
+    deliver.add_argument("--config", help="YAML configuration overriding the defaults")
+    add_json_flag(deliver)
+    deliver.set_defaults(handler=_run_delivery)
+
     def _no_scenario(args: argparse.Namespace) -> int:
         run.print_help()
         return 2
@@ -76,4 +99,31 @@ def _run_hydration(args: argparse.Namespace) -> int:
         emit_json(report)
     elif args.headless:
         print(f"{report['scenario']}: {report['outcome']} in {report['sim_time_s']} s sim time")
+    return 0
+
+
+def _run_delivery(args: argparse.Namespace) -> int:
+    from amiro.behavior.planning.cli import ENGINES
+    from amiro.core.config import ConfigError
+    from amiro.scenarios.deliver_notification import DeliveryOptions, run_delivery
+
+    if args.engine not in ENGINES:
+        raise ConfigError(f"unknown engine {args.engine!r} (choices: {', '.join(ENGINES)})")
+    doors = args.closed_door or ["living_door"]
+    options = DeliveryOptions(
+        seed=args.seed,
+        closed_doors=tuple(d for d in doors if d != "none"),
+        help=not args.no_help,
+        engine=args.engine,
+        live=not (args.headless or args.json),
+        speed=args.speed,
+        config_path=args.config,
+    )
+    report = run_delivery(options)
+    if args.json:
+        emit_json(report)
+    elif args.headless:
+        print(f"{report['scenario']}: {report['outcome']} in {report['sim_time_s']} s sim time")
+        if report["explanation"]:
+            print(report["explanation"])
     return 0

@@ -11,11 +11,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from amiro.core.clock import SimClock, wall_seconds
-from amiro.core.config import ConfigError, load
+from amiro.core.config import ConfigError
 from amiro.dialogue.phrases import check_language
-from amiro.scenarios.recorder import EventRecorder, stdout_or_none
-from amiro.system import SystemConfig, build_system
+from amiro.scenarios.common import base_config_data, run_scenario
+from amiro.system import System, SystemConfig
 
 BRANCHES = ("person_absent", "unreachable", "no_confirmation", "activity_missed")
 RESIDENT = "maria"
@@ -52,9 +51,7 @@ def scenario_config(opts: HydrationOptions) -> SystemConfig:
     if opts.branch is not None and opts.branch not in BRANCHES:
         raise ConfigError(f"unknown branch '{opts.branch}' (choices: {', '.join(BRANCHES)})")
     check_language(opts.lang)
-    base = load(SystemConfig, opts.config_path) if opts.config_path else SystemConfig()
-    data: dict[str, Any] = base.model_dump(exclude_unset=True)
-    data["seed"] = opts.seed
+    data = base_config_data(opts.config_path, opts.seed)
     script: dict[str, Any] = {}
     resident: dict[str, Any] = {
         "name": RESIDENT,
@@ -98,22 +95,19 @@ def scenario_config(opts: HydrationOptions) -> SystemConfig:
 
 def run_hydration(opts: HydrationOptions) -> dict[str, Any]:
     """Run the scenario to the end of the hydration behaviour; returns the contract's report."""
-    cfg = scenario_config(opts)
-    speed = opts.speed if opts.speed is not None else (4.0 if opts.live else None)
-    system = build_system(cfg, SimClock(speed=speed))
-    recorder = EventRecorder(system.runtime, live=stdout_or_none(opts.live))
-    started = wall_seconds()
-    system.start()
 
-    def finished() -> bool:
+    def finished(system: System) -> bool:
         runs = [r for r in system.engine.runs.values() if r.name == "hydration"]
         return bool(runs) and runs[0].done and not system.notifications.runs
 
-    system.runtime.spin_until(finished, opts.timeout_s)
-    system.runtime.spin_for(0.5)  # let the last acknowledgement reach every listener
-    wall = wall_seconds() - started
-    sim_time = system.runtime.clock.now()
-    system.stop()
+    done = run_scenario(
+        scenario_config(opts),
+        finished,
+        live=opts.live,
+        speed=opts.speed,
+        timeout_s=opts.timeout_s,
+    )
+    system, recorder = done.system, done.recorder
     runs = [r for r in system.engine.runs.values() if r.name == "hydration"]
     run = runs[0] if runs else None
     return {
@@ -122,9 +116,7 @@ def run_hydration(opts: HydrationOptions) -> dict[str, Any]:
         "branch": opts.branch or "default",
         "seed": opts.seed,
         "lang": opts.lang,
-        "sim_time_s": round(sim_time, 3),
-        "wall_time_s": round(wall, 3),
-        "speedup": round(sim_time / wall, 1) if wall > 0 else None,
+        **done.timing(),
         "steps": [r.to_dict() for r in run.records] if run else [],
         "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in recorder.acks],
         "collisions": system.sim.robot.collisions,

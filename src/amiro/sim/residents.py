@@ -30,6 +30,7 @@ ACTIVITIES: tuple[str, ...] = (
     "pointing",
     "sneeze_cough",
     "touch_chest",
+    "falling",
     "idle",
 )
 PROMPT_KINDS: tuple[str, ...] = (

@@ -44,6 +44,7 @@ from amiro.sim.base import BaseLimits, DriftParams, OmniBase
 from amiro.sim.base import Odometry as OdometryModel
 from amiro.sim.camera import Camera, CameraParams, Head
 from amiro.sim.config import ResidentSpec, SimConfig
+from amiro.sim.door_help import DOOR_OPENING_S, OPEN_DOOR_REQUEST, open_nearest_door
 from amiro.sim.lidar import Lidar, LidarParams
 from amiro.sim.messages import CameraObservation, Collision, EmergencyStop
 from amiro.sim.residents import DRINK_DURATION, Reply, Resident, ScriptedReply
@@ -276,6 +277,8 @@ class SimResidentsNode(Node):
         )
         if reply.prompt == "hydration_reminder" and reply.reply == "confirm":
             resident.start_activity("drink_water", self.now(), DRINK_DURATION)
+        if reply.prompt == OPEN_DOOR_REQUEST and reply.reply == "confirm":
+            self.call_later(DOOR_OPENING_S, partial(open_nearest_door, self.world, resident))
 
     def _update(self) -> None:
         now = self.now()

@@ -1,37 +1,60 @@
-"""RecognizeActivity: watch the person until the expected activity is seen, or time runs out."""
+"""RecognizeActivity: watch the person until the expected activity is seen, or time runs out.
+
+As section 5 of the paper proposes, the robot frames the person the way the model's
+training data did: it drives the base backwards (box too big or cut by the image edge) or
+forwards (box too small) until the person's box fills the trained share of the image, and
+it gives up early, for a spoken confirmation, when the skeleton stays too incomplete.
+"""
 
 from __future__ import annotations
 
+import math
+
 from amiro.behavior.task import Task, TaskContext, TaskStatus
 from amiro.behavior.tasks.gaze import look_at
-from amiro.core.messages import Point
+from amiro.core.messages import Point, Twist
+
+CMD_VEL = "/cmd_vel"
 
 
 class RecognizeActivity(Task):
     """params: ``person``, ``activity`` (e.g. drink_water), ``timeout_s`` (default 30),
     ``confirmations`` (consecutive sightings needed, default 3), ``period_s`` (default 0.5),
-    ``look_at`` (a map point: the head turns to it first, e.g. ``$person_position``).
+    ``look_at`` (a map point: the head turns to it, e.g. ``$person_position``),
+    ``incomplete_timeout_s`` (give up this long without a usable skeleton, default 10),
+    ``reframe`` (move the base to the trained framing, default true), ``reframe_speed``
+    (m/s, default 0.15), ``max_reframe_m`` (default 1.0).
     Fails with ``skeleton_incomplete`` when the skeleton was never usable, else
     ``not_recognised``."""
 
     type_name = "RecognizeActivity"
+    cancellable = True
 
     def start(self, ctx: TaskContext) -> None:
         p = self.resolved(ctx)
         self.person = str(p["person"])
         self.activity = str(p.get("activity", "drink_water"))
         self.deadline = ctx.now() + float(p.get("timeout_s", 30.0))
+        self.incomplete_deadline = ctx.now() + float(p.get("incomplete_timeout_s", 10.0))
         self.needed = int(p.get("confirmations", 3))
         self.period = float(p.get("period_s", 0.5))
+        self.reframe = bool(p.get("reframe", True))
+        self.speed = float(p.get("reframe_speed", 0.15))
+        self.budget = float(p.get("max_reframe_m", 1.0))
         self.next_look = ctx.now()
         self.streak = 0
         self.complete_seen = False
         self.labels: dict[str, int] = {}
-        if isinstance(p.get("look_at"), Point):
-            look_at(ctx, p["look_at"])
+        self.direction = 0  # +1 forwards, -1 backwards, 0 still
+        self.moved = 0.0
+        self.last_tick = ctx.now()
+        self.target = p.get("look_at") if isinstance(p.get("look_at"), Point) else None
+        if self.target is not None:
+            look_at(ctx, self.target)
 
     def update(self, ctx: TaskContext) -> TaskStatus:
         now = ctx.now()
+        self._drive(ctx, now)
         if now >= self.next_look:
             self.next_look = now + self.period
             reading = ctx.module("activity").observe(self.person)
@@ -40,11 +63,64 @@ class RecognizeActivity(Task):
                 self.labels[reading.label] = self.labels.get(reading.label, 0) + 1
             self.streak = self.streak + 1 if reading.label == self.activity else 0
             if self.streak >= self.needed:
-                self.detail = {"activity": self.activity, "confidence": reading.confidence}
+                self._stop(ctx)
+                self.detail = {
+                    "activity": self.activity,
+                    "confidence": round(reading.confidence, 3),
+                    "reframed_m": round(self.moved, 2),
+                }
                 ctx.event("activity_recognised", activity=self.activity, person=self.person)
                 return TaskStatus.SUCCESS
-        if now >= self.deadline:
+            self.direction = self._framing_direction(
+                ctx, reading.box_height_fraction, reading.clipped
+            )
+        gave_up = not self.complete_seen and now >= self.incomplete_deadline
+        if now >= self.deadline or gave_up:
+            self._stop(ctx)
             reason = "not_recognised" if self.complete_seen else "skeleton_incomplete"
-            self.detail = {"reason": reason, "seen": self.labels}
+            self.detail = {
+                "reason": reason,
+                "seen": self.labels,
+                "reframed_m": round(self.moved, 2),
+            }
             return TaskStatus.FAILURE
         return TaskStatus.RUNNING
+
+    def cancel(self, ctx: TaskContext) -> None:
+        self._stop(ctx)
+
+    # --- framing --------------------------------------------------------------------------
+    def _framing_direction(self, ctx: TaskContext, box: float | None, clipped: bool) -> int:
+        """Backwards when the box is too big or cut, forwards when too small, else still."""
+        box_range = getattr(ctx.module("activity"), "box_range", None)
+        if not self.reframe or box_range is None or box is None or self.moved >= self.budget:
+            return 0
+        low, high = box_range
+        want = -1 if (clipped or box > high) else (1 if box < low else 0)
+        return want if want != 0 and self._free_ahead(ctx, want) else 0
+
+    def _free_ahead(self, ctx: TaskContext, direction: int, look: float = 0.3) -> bool:
+        pose = ctx.module("navigation").pose
+        world = ctx.modules.get("world")
+        if pose is None or world is None:
+            return False
+        x = pose.x + direction * look * math.cos(pose.theta)
+        y = pose.y + direction * look * math.sin(pose.theta)
+        return bool(world.is_free(x, y, 0.3))
+
+    def _drive(self, ctx: TaskContext, now: float) -> None:
+        dt, self.last_tick = now - self.last_tick, now
+        if self.direction == 0:
+            return
+        self.moved += self.speed * dt
+        if self.moved >= self.budget:
+            self._stop(ctx)
+            return
+        ctx.bus.publish(CMD_VEL, Twist.planar(self.direction * self.speed, 0.0, 0.0))
+        if self.target is not None:
+            look_at(ctx, self.target)
+
+    def _stop(self, ctx: TaskContext) -> None:
+        if self.direction != 0:
+            ctx.bus.publish(CMD_VEL, Twist.planar(0.0, 0.0, 0.0))
+        self.direction = 0

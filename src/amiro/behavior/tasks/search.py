@@ -3,6 +3,10 @@
 Perception is always on (paper, section 3): the person may be recognised at any moment,
 including while the robot drives between rooms.  The person's map position and room go to
 the blackboard as ``person_position`` and ``person_room`` for the MoveTo that follows.
+
+Beyond the paper: when someone is seen whose face is backlit (the camera faces a light
+source), the robot side-steps across its line of sight to change the viewing angle and looks
+again, as the paper proposes, before carrying on with the search.
 """
 
 from __future__ import annotations
@@ -12,17 +16,20 @@ from collections import deque
 from typing import Any
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
-from amiro.behavior.tasks.gaze import point_head
+from amiro.behavior.tasks.gaze import look_at, point_head
 from amiro.core.bus import GoalHandle
 from amiro.core.messages import Point, Pose2D
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToGoal
 
 HEAD_SWEEP = (0.0, 0.9, -0.9, 1.8, -1.8)  # rad: centre, then wider on each side
+SIDE_STEP_M = 1.0  # across the line of sight: about 20-30 degrees at 2-3 m
+ROBOT_CLEARANCE_M = 0.35
 
 
 class Search(Task):
     """params: ``person``; ``dwell_s`` per head position (default 1.2); ``sightings`` needed
-    (default 2).  Fails with ``not_found`` after every room has been looked at."""
+    (default 2); ``side_steps`` allowed for backlit faces (default 2).  Fails with
+    ``not_found`` after every room has been looked at."""
 
     type_name = "Search"
     cancellable = True
@@ -32,6 +39,7 @@ class Search(Task):
         self.person = str(p["person"])
         self.dwell = float(p.get("dwell_s", 1.2))
         self.needed = int(p.get("sightings", 2))
+        self.side_steps_left = int(p.get("side_steps", 2))
         self.world = ctx.module("world")
         self.sightings: list[Point] = []
         self.visited: set[str] = set()
@@ -75,7 +83,10 @@ class Search(Task):
             ctx.event("search_room", room=room, person=self.person)
             self.steps.append(("goto", room))
         kind, arg = self.steps.popleft()
-        if kind == "head":
+        if kind == "look":
+            look_at(ctx, arg)
+            self.step_until = ctx.now() + 2 * self.dwell
+        elif kind == "head":
             point_head(ctx, float(arg))
             self.step_until = ctx.now() + self.dwell
         elif kind == "turn":
@@ -83,15 +94,65 @@ class Search(Task):
             if pose is not None:
                 target = Pose2D(pose.x, pose.y, pose.theta + float(arg))
                 self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(pose=target))
+        elif kind == "step":
+            point_head(ctx, 0.0)
+            self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(pose=arg))
         else:
             point_head(ctx, 0.0)
             self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place=str(arg)))
         return True
 
+    def _side_step(self, ctx: TaskContext, person: Point) -> bool:
+        """Step across the line of sight to ``person`` (away from the map's light sources
+        when it has any) and look at them again; False when no side is free."""
+        pose = self._pose(ctx)
+        if pose is None:
+            return False
+        bearing = math.atan2(person.y - pose.y, person.x - pose.x)
+        sides = []
+        for sign in (1.0, -1.0):
+            x = pose.x - sign * SIDE_STEP_M * math.sin(bearing)
+            y = pose.y + sign * SIDE_STEP_M * math.cos(bearing)
+            if self.world.is_free(x, y, ROBOT_CLEARANCE_M):
+                sides.append((self._glare(person, x, y), x, y))
+        if not sides:
+            return False
+        _, x, y = min(sides)
+        self._stop_motion()
+        self.side_steps_left -= 1
+        facing = math.atan2(person.y - y, person.x - x)
+        self.steps.appendleft(("look", person))
+        self.steps.appendleft(("step", Pose2D(x, y, facing)))
+        self.step_until = ctx.now()
+        ctx.event("search_side_step", person=self.person, x=round(x, 2), y=round(y, 2))
+        return True
+
+    def _glare(self, person: Point, x: float, y: float) -> float:
+        """How closely a light source lines up behind the person seen from (x, y): the
+        negative of the smallest angle between the viewing ray and a light's bearing."""
+        ray = math.atan2(person.y - y, person.x - x)
+        angles = [
+            abs(math.remainder(math.atan2(light.y - person.y, light.x - person.x) - ray, math.tau))
+            for light in self.world.home.lights
+        ]
+        return -min(angles, default=0.0)
+
     def update(self, ctx: TaskContext) -> TaskStatus:
+        backlit: Point | None = None
         for seen in ctx.module("perception").look():
             if seen.name == self.person:
                 self.sightings.append(seen.position)
+            elif seen.name is None and getattr(seen, "face_backlit", False):
+                backlit = seen.position
+        if (
+            backlit is not None
+            and len(self.sightings) < self.needed
+            and self.side_steps_left > 0
+            and not any(kind in ("step", "look") for kind, _ in self.steps)
+            and not (self.goal is not None and self.goal.goal.pose is not None)
+            and self._side_step(ctx, backlit)
+        ):
+            return TaskStatus.RUNNING
         if len(self.sightings) >= self.needed:
             self._stop_motion()
             mid = len(self.sightings) // 2

@@ -1,0 +1,69 @@
+"""Joint-dropout and occlusion augmentation, so partial skeletons still classify.
+
+The paper (section 5) saw OpenPose lose joints when the robot stood too close or a
+chair hid the person; these transforms show the model such skeletons while it trains.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
+
+REGIONS: dict[str, tuple[int, ...]] = {
+    "legs": tuple(J[n] for s in ("Left", "Right") for n in (f"Knee{s}", f"Ankle{s}", f"Foot{s}")),
+    "lower_body": tuple(
+        J[n]
+        for n in (
+            "SpineBase",
+            "HipLeft",
+            "HipRight",
+            *(f"{j}{s}" for s in ("Left", "Right") for j in ("Knee", "Ankle", "Foot")),
+        )
+    ),
+    "left_arm": tuple(
+        J[n] for n in ("ElbowLeft", "WristLeft", "HandLeft", "HandTipLeft", "ThumbLeft")
+    ),
+    "right_arm": tuple(
+        J[n] for n in ("ElbowRight", "WristRight", "HandRight", "HandTipRight", "ThumbRight")
+    ),
+    "head": (J["Head"], J["Neck"]),
+}
+
+
+def drop_joints(frames: FloatArray, fraction: float, rng: np.random.Generator) -> FloatArray:
+    """The same randomly chosen ``fraction`` of joints unseen in every frame."""
+    out = frames.copy()
+    count = round(fraction * NUM_JOINTS)
+    out[:, rng.choice(NUM_JOINTS, size=count, replace=False)] = np.nan
+    return out
+
+
+def flicker(frames: FloatArray, fraction: float, rng: np.random.Generator) -> FloatArray:
+    """Each joint of each frame independently unseen with probability ``fraction``."""
+    out = frames.copy()
+    out[rng.random(frames.shape[:2]) < fraction] = np.nan
+    return out
+
+
+def occlude(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
+    """One body region hidden, over the whole window or a stretch of it."""
+    out = frames.copy()
+    names = list(REGIONS)
+    region = REGIONS[names[int(rng.integers(len(names)))]]
+    n = len(frames)
+    start, stop = (0, n) if rng.random() < 0.5 else sorted(rng.integers(0, n + 1, 2))
+    out[start:stop, list(region)] = np.nan
+    return out
+
+
+def augment(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
+    """A random mix: untouched, fixed dropout, flicker or a region occluded."""
+    pick = rng.random()
+    if pick < 0.35:
+        return frames
+    if pick < 0.6:
+        return drop_joints(frames, rng.uniform(0.05, 0.5), rng)
+    if pick < 0.75:
+        return flicker(frames, rng.uniform(0.05, 0.4), rng)
+    return occlude(frames, rng)

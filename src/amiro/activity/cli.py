@@ -1,0 +1,152 @@
+"""``amiro har``: train, evaluate and benchmark the activity model; read NTU skeleton files."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from amiro.cli_support import add_json_flag, emit_json
+from amiro.core.config import ConfigError
+
+
+def register(sub: Any) -> None:
+    har = sub.add_parser("har", help="human activity recognition: train, evaluate, bench, read")
+    cmds = har.add_subparsers(dest="har_command", metavar="COMMAND")
+
+    train = cmds.add_parser(
+        "train",
+        help="train the multi-stage LSTM on synthetic motion and export ONNX (needs torch)",
+    )
+    train.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
+    train.add_argument("--checkpoints", type=Path, help="folder for per-epoch checkpoints")
+    train.add_argument("--epochs", type=int, default=16)
+    train.add_argument("--seed", type=int, default=0)
+    train.add_argument("--hidden", type=int, default=96, help="LSTM and feature width")
+    train.add_argument("--per-cell", type=int, default=3, help="windows per subject/view/action")
+    train.add_argument("--max-steps", type=int, help="stop after this many optimiser steps")
+    add_json_flag(train)
+    train.set_defaults(handler=_train)
+
+    export = cmds.add_parser("export", help="export a training checkpoint to ONNX (needs torch)")
+    export.add_argument("checkpoint", type=Path)
+    export.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
+    add_json_flag(export)
+    export.set_defaults(handler=_export)
+
+    evaluate = cmds.add_parser(
+        "evaluate", help="accuracy: cross-subject, cross-view, confusion, missing joints"
+    )
+    evaluate.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
+    evaluate.add_argument("--ntu", type=Path, help="a folder of NTU RGB+D .skeleton files")
+    evaluate.add_argument("--seed", type=int, default=1000)
+    add_json_flag(evaluate)
+    evaluate.set_defaults(handler=_evaluate)
+
+    read = cmds.add_parser("read", help="parse one NTU RGB+D .skeleton file")
+    read.add_argument("file", type=Path)
+    add_json_flag(read)
+    read.set_defaults(handler=_read)
+
+    bench = cmds.add_parser("bench", help="inference time, preprocessing included (Table 16)")
+    bench.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
+    bench.add_argument("--iterations", type=int, default=100)
+    add_json_flag(bench)
+    bench.set_defaults(handler=_bench)
+
+    def _no_command(args: argparse.Namespace) -> int:
+        har.print_help()
+        return 2
+
+    har.set_defaults(handler=_no_command)
+
+
+def _positive(value: int | None, name: str) -> None:
+    if value is not None and value <= 0:
+        raise ConfigError(f"{name} must be positive, got {value}")
+
+
+def _train(args: argparse.Namespace) -> int:
+    for name in ("epochs", "hidden", "per_cell", "max_steps"):
+        _positive(getattr(args, name), "--" + name.replace("_", "-"))
+    try:
+        from amiro.activity.train import TrainConfig, train
+    except ImportError as exc:
+        raise ConfigError(
+            f"training needs the 'train' extra (pip install amiro[train]): {exc}"
+        ) from None
+    report = train(
+        TrainConfig(
+            out=args.out,
+            epochs=args.epochs,
+            hidden=args.hidden,
+            seed=args.seed,
+            per_cell=args.per_cell,
+            max_steps=args.max_steps,
+            checkpoints=args.checkpoints,
+        )
+    )
+    if args.json:
+        emit_json(report)
+    else:
+        print(f"wrote {report['out']} after {report['steps']} steps", file=sys.stderr)
+    return 0
+
+
+def _export(args: argparse.Namespace) -> int:
+    if not args.checkpoint.is_file():
+        raise ConfigError(f"{args.checkpoint}: no such file")
+    try:
+        from amiro.activity.train import export_checkpoint
+    except ImportError as exc:
+        raise ConfigError(
+            f"export needs the 'train' extra (pip install amiro[train]): {exc}"
+        ) from None
+    report = export_checkpoint(args.checkpoint, args.out)
+    if args.json:
+        emit_json(report)
+    return 0
+
+
+def _evaluate(args: argparse.Namespace) -> int:
+    from amiro.activity.evaluate import evaluate_ntu, evaluate_synthetic, format_report
+    from amiro.activity.onnx_model import ActivityModel
+
+    model = ActivityModel(args.model)
+    report = evaluate_ntu(model, args.ntu) if args.ntu else evaluate_synthetic(model, args.seed)
+    if args.json:
+        emit_json(report)
+    else:
+        print(format_report(report))
+    return 0
+
+
+def _read(args: argparse.Namespace) -> int:
+    from amiro.activity.ntu import read_skeleton_file
+
+    seq = read_skeleton_file(args.file)
+    report = seq.summary()
+    if args.json:
+        emit_json(report)
+    else:
+        bodies = ", ".join(f"{b['id']} ({b['frames']} frames)" for b in report["bodies"])
+        print(
+            f"{args.file}: {report['frames']} frames, {report['joints']} joints; bodies: {bodies}"
+        )
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from amiro.activity.bench import run_bench
+    from amiro.activity.onnx_model import ActivityModel
+
+    _positive(args.iterations, "--iterations")
+    report = run_bench(ActivityModel(args.model), args.iterations)
+    if args.json:
+        emit_json(report)
+    else:
+        for length, ms in report["lengths"].items():
+            print(f"{length:>3} frames: {ms:.3f} ms (paper: {report['paper_ms'][length]} ms)")
+        print(f"streaming: {report['stream_ms_per_frame']:.3f} ms per frame")
+    return 0

@@ -1,0 +1,151 @@
+"""``amiro har train``: train the multi-stage LSTM on synthetic motion and export ONNX.
+
+Seeded end to end (data, augmentation, weights, batch order); a progress bar on stderr;
+a checkpoint after every epoch.  Needs the ``train`` extra (torch); the runtime does not.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+import torch
+from torch import nn
+from tqdm import tqdm  # type: ignore[import-untyped]
+
+from amiro.activity.augment import augment
+from amiro.activity.dataset import TRAIN_CAMERAS_DEG, TRAIN_SUBJECTS, WINDOW, generate
+from amiro.activity.model import LastFrameProbabilities, MultiStageLSTM
+from amiro.activity.motion import ACTIONS, FPS
+from amiro.activity.normalize import FEATURES_PER_FRAME, preprocess_batch
+from amiro.activity.onnx_model import BOX_HEIGHT_RANGE, METADATA_KEY
+
+
+@dataclass(frozen=True)
+class TrainConfig:
+    out: Path
+    epochs: int = 16
+    batch: int = 64
+    hidden: int = 96
+    lr: float = 2e-3
+    seed: int = 0
+    per_cell: int = 3  # windows per (subject, camera, action)
+    max_steps: int | None = None  # stop early (tests)
+    min_length: int = 16  # training windows are cropped to min_length..WINDOW frames
+    progress: bool = True
+    checkpoints: Path | None = None  # default: a checkpoints/ folder beside ``out``
+
+
+def _batch(frames: np.ndarray, rng: np.random.Generator, min_length: int) -> torch.Tensor:
+    length = int(rng.integers(min_length, WINDOW + 1))
+    start = int(rng.integers(0, WINDOW - length + 1))
+    cropped = np.stack([augment(f[start : start + length], rng) for f in frames])
+    return torch.from_numpy(preprocess_batch(cropped))
+
+
+def _loss(logits: torch.Tensor, labels: torch.Tensor) -> torch.Tensor:
+    """Cross-entropy of every stage over the last quarter of the window's frames."""
+    stages, batch, frames, classes = logits.shape
+    tail = logits[:, :, -max(1, frames // 4) :]
+    target = labels[None, :, None].expand(stages, batch, tail.shape[2])
+    return nn.functional.cross_entropy(tail.reshape(-1, classes), target.reshape(-1)) * stages
+
+
+def train(cfg: TrainConfig) -> dict[str, object]:
+    """Train, checkpoint each epoch next to ``cfg.out``, export ``cfg.out`` (ONNX)."""
+    torch.manual_seed(cfg.seed)
+    torch.set_num_threads(2)
+    rng = np.random.default_rng(cfg.seed)
+    data = generate(TRAIN_SUBJECTS, TRAIN_CAMERAS_DEG, cfg.per_cell, rng, seed=cfg.seed)
+    model = MultiStageLSTM(FEATURES_PER_FRAME, len(ACTIONS), cfg.hidden)
+    optim = torch.optim.Adam(model.parameters(), lr=cfg.lr)
+    per_epoch = int(np.ceil(len(data) / cfg.batch))
+    sched = torch.optim.lr_scheduler.OneCycleLR(
+        optim, max_lr=cfg.lr, total_steps=max(cfg.epochs * per_epoch, 1)
+    )
+    labels = torch.from_numpy(data.labels)
+    ckpt_dir = cfg.checkpoints or cfg.out.parent / "checkpoints"
+    ckpt_dir.mkdir(parents=True, exist_ok=True)
+    step, loss_value = 0, float("nan")
+    bar = tqdm(total=cfg.epochs * per_epoch, disable=not cfg.progress, file=sys.stderr)
+    for epoch in range(cfg.epochs):
+        order = rng.permutation(len(data))
+        for i in range(per_epoch):
+            idx = order[i * cfg.batch : (i + 1) * cfg.batch]
+            x = _batch(data.frames[idx], rng, cfg.min_length)
+            h0, c0 = model.initial_state(len(idx))
+            logits, _, _ = model(x, h0, c0)
+            loss = _loss(logits, labels[idx])
+            optim.zero_grad()
+            loss.backward()  # type: ignore[no-untyped-call]
+            nn.utils.clip_grad_norm_(model.parameters(), 1.0)
+            optim.step()
+            sched.step()
+            step += 1
+            loss_value = float(loss)
+            bar.update()
+            bar.set_postfix(epoch=epoch + 1, loss=f"{loss_value:.3f}")
+            if cfg.max_steps is not None and step >= cfg.max_steps:
+                break
+        torch.save(
+            {"epoch": epoch + 1, "model": model.state_dict(), "config": str(asdict(cfg))},
+            ckpt_dir / f"epoch_{epoch + 1:03d}.pt",
+        )
+        if cfg.max_steps is not None and step >= cfg.max_steps:
+            break
+    bar.close()
+    export(model, cfg.out, cfg.hidden)
+    return {"out": str(cfg.out), "steps": step, "final_loss": loss_value, "samples": len(data)}
+
+
+def export(model: MultiStageLSTM, path: Path, hidden: int) -> None:
+    """The ONNX graph (window or one frame, with states) and its metadata."""
+    import onnx
+
+    model.eval()
+    wrapper = LastFrameProbabilities(model)
+    x = torch.zeros(1, 8, FEATURES_PER_FRAME)
+    h0, c0 = model.initial_state(1)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    torch.onnx.export(
+        wrapper,
+        (x, h0, c0),
+        str(path),
+        dynamo=False,
+        input_names=["features", "h0", "c0"],
+        output_names=["probabilities", "h", "c"],
+        dynamic_axes={
+            "features": {0: "batch", 1: "frames"},
+            "h0": {1: "batch"},
+            "c0": {1: "batch"},
+            "probabilities": {0: "batch"},
+            "h": {1: "batch"},
+            "c": {1: "batch"},
+        },
+        opset_version=17,
+    )
+    proto = onnx.load(str(path))
+    meta = {
+        "classes": list(ACTIONS),
+        "fps": FPS,
+        "hidden": hidden,
+        "stages": len(model.stages),
+        "features": FEATURES_PER_FRAME,
+        "box_height_fraction": list(BOX_HEIGHT_RANGE),
+    }
+    entry = proto.metadata_props.add()
+    entry.key, entry.value = METADATA_KEY, json.dumps(meta)
+    onnx.save(proto, str(path))
+
+
+def export_checkpoint(checkpoint: Path, out: Path) -> dict[str, object]:
+    """Export a training checkpoint (e.g. an interrupted run's last epoch) to ONNX."""
+    state = torch.load(checkpoint, map_location="cpu", weights_only=True)["model"]
+    hidden = int(state["stages.0.lstm.weight_hh_l0"].shape[1])
+    model = MultiStageLSTM(FEATURES_PER_FRAME, len(ACTIONS), hidden)
+    model.load_state_dict(state)
+    export(model, out, hidden)
+    return {"out": str(out), "checkpoint": str(checkpoint), "hidden": hidden}

@@ -1,0 +1,104 @@
+"""``amiro plan``: the PDDL of the default apartment, and the planning benchmark."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any, get_args
+
+from amiro.cli_support import add_json_flag, emit_json
+
+ENGINES = ("pyperplan", "fast-downward", "kairos")
+
+
+def register(sub: Any) -> None:
+    plan = sub.add_parser("plan", help="declarative planning (PDDL) of the robot's errands")
+    cmds = plan.add_subparsers(dest="plan_command", metavar="COMMAND")
+
+    bench = cmds.add_parser(
+        "bench",
+        help="planning time for generated homes of 5, 10 and 20 rooms",
+        description="Plans a delivery across generated homes of 5, 10 and 20 rooms and "
+        "reports the median planning time (problem generation and engine, milliseconds).",
+    )
+    _engine_args(bench)
+    bench.add_argument("--trials", type=int, default=5, help="plans per home (default 5)")
+    bench.add_argument("--seed", type=int, default=0, help="seed of the generated homes")
+    add_json_flag(bench)
+    bench.set_defaults(handler=_bench)
+
+    pddl = cmds.add_parser(
+        "pddl",
+        help="print the PDDL domain and problem of the default apartment",
+        description="The domain generated for the shipped apartment and a problem: deliver a "
+        "notification to Maria in the living room, starting from the dock.",
+    )
+    pddl.add_argument("--temporal", action="store_true", help="the durative variant")
+    add_json_flag(pddl)
+    pddl.set_defaults(handler=_pddl)
+
+    def _no_command(args: argparse.Namespace) -> int:
+        plan.print_help()
+        return 2
+
+    plan.set_defaults(handler=_no_command)
+
+
+def _engine_args(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--engine", default="pyperplan", help=f"one of {', '.join(ENGINES)}")
+    parser.add_argument("--temporal", action="store_true", help="durative actions (kairos)")
+
+
+def _config(args: argparse.Namespace) -> Any:
+    from amiro.behavior.planning.planner import Engine, PlanningConfig
+    from amiro.core.config import ConfigError, parse
+
+    if args.engine not in get_args(Engine):
+        raise ConfigError(f"unknown engine {args.engine!r} (choices: {', '.join(ENGINES)})")
+    return parse(PlanningConfig, {"engine": args.engine, "temporal": args.temporal}, "--engine")
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from amiro.behavior.planning.bench import run_bench
+    from amiro.core.config import ConfigError
+
+    if args.trials < 1:
+        raise ConfigError(f"--trials must be at least 1, got {args.trials}")
+    report = run_bench(_config(args), seed=args.seed, trials=args.trials)
+    if args.json:
+        emit_json(report)
+        return 0
+    for home in report["homes"]:
+        print(
+            f"{home['rooms']:3d} rooms, {home['doors']:3d} doors: {home['ms_median']:8.1f} ms "
+            f"(median of {report['trials']}, {home['plan_steps']} actions)"
+        )
+    print(f"target < 100 ms for 10 rooms: {'met' if report['meets_target'] else 'missed'}")
+    return 0
+
+
+def _pddl(args: argparse.Namespace) -> int:
+    from unified_planning.io import PDDLWriter
+
+    from amiro.behavior.planning.domain import home_domain
+    from amiro.behavior.planning.knowledge import KnowledgeBase
+    from amiro.behavior.planning.problem import Goal, RobotState, make_problem
+    from amiro.behavior.planning.topology import topology_from_world
+    from amiro.sim.world import World, default_home_path
+
+    world = World.load(default_home_path())
+    kb = KnowledgeBase(topology_from_world(world), {"maria": "living_room", "john": "hallway"})
+    dock = world.place("dock")
+    problem = make_problem(
+        home_domain(args.temporal),
+        kb,
+        RobotState("hallway", dock.x, dock.y),
+        [Goal("notified", "maria")],
+    )
+    writer = PDDLWriter(problem)
+    domain, task = writer.get_domain(), writer.get_problem()
+    if args.json:
+        emit_json({"domain": domain, "problem": task})
+    else:
+        print(domain)
+        print(task)
+    return 0

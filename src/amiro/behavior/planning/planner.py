@@ -1,0 +1,157 @@
+"""Planning through unified-planning with the engine chosen in config.
+
+``pyperplan`` (classical, Apache-2.0) is the default; ``fast-downward`` (GPL, optional
+package ``up-fast-downward``) is a faster classical engine; ``kairos`` (``up-kairos``) plans
+with durations from distances (temporal).  When no plan exists the outcome carries an
+explanation in words (see :mod:`.explain`).
+"""
+
+from __future__ import annotations
+
+import importlib
+import time
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from pydantic import Field, model_validator
+from unified_planning.engines import PlanGenerationResultStatus as Status
+from unified_planning.model import Problem
+from unified_planning.plans import SequentialPlan, TimeTriggeredPlan
+from unified_planning.shortcuts import OneshotPlanner, get_environment
+
+from amiro.behavior.planning.domain import home_domain
+from amiro.behavior.planning.explain import explain_no_plan
+from amiro.behavior.planning.knowledge import KnowledgeBase
+from amiro.behavior.planning.problem import Goal, RobotState, make_problem
+from amiro.core.config import ConfigError, Section
+
+Engine = Literal["pyperplan", "fast-downward", "kairos"]
+_PACKAGES = {
+    "pyperplan": "up_pyperplan",
+    "fast-downward": "up_fast_downward",
+    "kairos": "up_kairos",
+}
+_SOLVED = (Status.SOLVED_SATISFICING, Status.SOLVED_OPTIMALLY)
+
+
+class PlanningConfig(Section):
+    engine: Engine = "pyperplan"
+    temporal: bool = Field(default=False, description="durative actions (engine kairos)")
+    timeout_s: float = Field(default=10.0, gt=0.0)
+    speed_mps: float = Field(default=0.35, gt=0.0, description="for durations from distances")
+    max_replans: int = Field(default=6, ge=0)
+
+    @model_validator(mode="after")
+    def _temporal_engine(self) -> PlanningConfig:
+        if self.temporal and self.engine != "kairos":
+            raise ValueError(f"temporal planning needs engine kairos, not {self.engine}")
+        return self
+
+
+@dataclass(frozen=True, slots=True)
+class PlanStep:
+    action: str
+    args: tuple[str, ...]
+    start_s: float | None = None
+    duration_s: float | None = None
+
+    def __str__(self) -> str:
+        return f"{self.action}({', '.join(self.args)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"action": self.action, "args": list(self.args)}
+        if self.start_s is not None:
+            out["start_s"] = self.start_s
+            out["duration_s"] = self.duration_s
+        return out
+
+
+@dataclass
+class PlanOutcome:
+    engine: str
+    status: str
+    planning_ms: float
+    steps: list[PlanStep] = field(default_factory=list)
+    explanation: str = ""
+
+    @property
+    def solved(self) -> bool:
+        return self.status in {s.name for s in _SOLVED}
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "engine": self.engine,
+            "status": self.status,
+            "planning_ms": round(self.planning_ms, 2),
+            "steps": [s.to_dict() for s in self.steps],
+            "explanation": self.explanation,
+        }
+
+
+def engine_available(engine: str) -> bool:
+    try:
+        importlib.import_module(_PACKAGES[engine])
+    except ImportError:
+        return False
+    return True
+
+
+def _prepare(engine: str) -> None:
+    """Quiet credits on stdout (``--json`` owns it) and register engines UP does not list."""
+    env = get_environment()
+    env.credits_stream = None
+    if not engine_available(engine):
+        package = _PACKAGES[engine].replace("_", "-")
+        raise ConfigError(f"planning engine {engine} needs the package {package}")
+    if engine == "kairos":
+        importlib.import_module("up_kairos").register(env)
+
+
+def solve(problem: Problem, engine: str, timeout_s: float) -> tuple[str, list[PlanStep]]:
+    _prepare(engine)
+    with OneshotPlanner(name=engine) as planner:
+        # pyperplan has no timeout and warns when given one
+        result = planner.solve(problem, timeout=None if engine == "pyperplan" else timeout_s)
+    if result.status not in _SOLVED or result.plan is None:
+        return result.status.name, []
+    return result.status.name, _steps(result.plan)
+
+
+def _steps(plan: Any) -> list[PlanStep]:
+    if isinstance(plan, SequentialPlan):
+        return [
+            PlanStep(a.action.name, tuple(str(p) for p in a.actual_parameters))
+            for a in plan.actions
+        ]
+    if isinstance(plan, TimeTriggeredPlan):
+        return [
+            PlanStep(
+                a.action.name,
+                tuple(str(p) for p in a.actual_parameters),
+                float(start),
+                None if duration is None else float(duration),
+            )
+            for start, a, duration in plan.timed_actions
+        ]
+    raise ConfigError(f"unsupported plan kind {type(plan).__name__}")
+
+
+class HomePlanner:
+    """Builds the problem from the knowledge base and plans with the configured engine."""
+
+    def __init__(self, config: PlanningConfig | None = None) -> None:
+        self.config = config or PlanningConfig()
+        self.domain = home_domain(self.config.temporal)
+
+    def problem(self, kb: KnowledgeBase, robot: RobotState, goals: list[Goal]) -> Problem:
+        return make_problem(self.domain, kb, robot, goals, self.config.speed_mps)
+
+    def plan(self, kb: KnowledgeBase, robot: RobotState, goals: list[Goal]) -> PlanOutcome:
+        started = time.perf_counter()
+        problem = self.problem(kb, robot, goals)
+        status, steps = solve(problem, self.config.engine, self.config.timeout_s)
+        elapsed_ms = (time.perf_counter() - started) * 1000.0
+        outcome = PlanOutcome(self.config.engine, status, elapsed_ms, steps)
+        if not steps:
+            outcome.explanation = explain_no_plan(kb, robot, goals)
+        return outcome

@@ -1,0 +1,74 @@
+"""The dialogue's actions: each turns filled slots into an answer (a phrase key and its
+fields) using the health store, calendar, weather, devices or the behaviour engine."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from amiro.dialogue.phrases import phrase
+from amiro.dialogue.sources import Sources
+
+Submit = Callable[[str, dict[str, Any]], object]
+Answer = tuple[str, dict[str, Any]]
+
+
+def day_phrase(day: str, lang: str) -> str:
+    if day in ("today", "tomorrow", "yesterday"):
+        return phrase(f"day_{day}", lang)
+    return phrase("day_date", lang, {"date": day})
+
+
+class Actions:
+    def __init__(self, sources: Sources, submit: Submit | None = None) -> None:
+        self.sources = sources
+        self.submit = submit
+
+    def run(self, name: str, slots: dict[str, str], user: str, lang: str) -> Answer:
+        if name.startswith("utter_"):
+            return name, {}
+        handler: Callable[[dict[str, str], str, str], Answer] = getattr(self, name)
+        return handler(slots, user, lang)
+
+    def answer_health(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        metric, day = slots["health_entity"], slots["dateandtime_entity"]
+        value = self.sources.health.latest(user, metric, day)
+        if value is None:
+            return "answer_no_data", {}
+        return f"answer_{metric}", {"day_phrase": day_phrase(day, lang), **value}
+
+    def answer_info(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        return f"answer_info_{slots['info_entity']}", {}
+
+    def answer_weather(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        day = slots["dateandtime_entity"]
+        location = slots.get("location_entity", "").title() or self.sources.home_location
+        found = self.sources.weather.forecast(location, day)
+        if found is None:
+            return "answer_no_weather", {}
+        condition = phrase(f"weather_{found['condition']}", lang)
+        fields = {"day_phrase": day_phrase(day, lang), "location": location}
+        return "answer_weather", {**found, **fields, "condition": condition}
+
+    def answer_calendar(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        day = slots["dateandtime_entity"]
+        events = self.sources.calendar.events(user, day)
+        fields = {"day_phrase": day_phrase(day, lang)}
+        if not events:
+            return "answer_calendar_empty", fields
+        listed = ", ".join(f"{e['time']} {e['title']}" for e in events)
+        return "answer_calendar", {**fields, "events": listed}
+
+    def control_device(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        room, device, state = slots["room_entity"], slots["device_entity"], slots["device_state"]
+        if not self.sources.devices.set(room, device, state):
+            return "answer_device_unknown", {}
+        return "answer_device_done", {"device": device, "state": state, "room": room}
+
+    def go_to(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        if self.submit is None:
+            return "answer_go_to_unavailable", {}
+        target = slots.get("person_entity") or slots["room_entity"]
+        payload = {k: v for k, v in slots.items() if k in ("person_entity", "room_entity")}
+        self.submit("go_to", {**payload, "requested_by": user, "lang": lang})
+        return "answer_go_to", {"target": target.title() if "person_entity" in slots else target}

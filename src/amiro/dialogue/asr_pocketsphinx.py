@@ -1,0 +1,47 @@
+"""pocketsphinx with its bundled US English model.  Grammar mode (JSGF from the NLU training
+data, or the yes/no/later answers for Listen) is accurate and fast; the free n-gram language
+model is kept for comparison (``grammar="none"``)."""
+
+from __future__ import annotations
+
+import math
+
+from pocketsphinx import Decoder  # type: ignore[import-untyped,import-not-found,unused-ignore]
+
+from amiro.core.config import ConfigError
+from amiro.dialogue.asr import Transcript
+from amiro.dialogue.audio import ASR_RATE, Audio, resample
+from amiro.dialogue.grammar import ANSWER_INTENTS, jsgf
+from amiro.dialogue.training_data import shipped_training_data
+
+GRAMMARS = ("nlu", "answers", "none")
+
+
+class PocketsphinxRecognizer:
+    def __init__(self, grammar: str = "nlu", lang: str = "en") -> None:
+        if lang != "en":
+            raise ConfigError(f"asr pocketsphinx: only the bundled English model (not '{lang}')")
+        if grammar not in GRAMMARS:
+            raise ConfigError(
+                f"asr pocketsphinx: unknown grammar '{grammar}' ({', '.join(GRAMMARS)})"
+            )
+        # Without filler loops and with wider beams the grammar search reaches the sentence's
+        # end on synthetic and noisy speech (measured: 7/7 vs 3/7 sentences, RTF 0.08).
+        self.decoder = Decoder(
+            samprate=ASR_RATE, loglevel="FATAL", fsgusefiller=False, beam=1e-60, wbeam=1e-40
+        )
+        if grammar != "none":
+            intents = ANSWER_INTENTS if grammar == "answers" else None
+            known = self.decoder.lookup_word
+            text = jsgf(shipped_training_data("en"), lambda w: known(w) is not None, intents)
+            self.decoder.add_jsgf_string(grammar, text)
+            self.decoder.activate_search(grammar)
+
+    def transcribe(self, audio: Audio) -> Transcript:
+        self.decoder.start_utt()
+        self.decoder.process_raw(resample(audio, ASR_RATE).to_bytes(), full_utt=True)
+        self.decoder.end_utt()
+        hyp = self.decoder.hyp()
+        if hyp is None:
+            return Transcript("", 0.0)
+        return Transcript(hyp.hypstr, min(1.0, math.exp(max(-50.0, hyp.prob / 1e4))))

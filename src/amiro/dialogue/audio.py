@@ -1,0 +1,77 @@
+"""Audio as 16-bit mono samples: WAV in and out, resampling to the recognisers' 16 kHz and the
+per-speaker preprocessing of the profiles (gain, high-pass)."""
+
+from __future__ import annotations
+
+import io
+import wave
+from dataclasses import dataclass
+from math import gcd
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+from scipy import signal
+
+from amiro.core.config import ConfigError
+
+ASR_RATE = 16000
+
+
+@dataclass(frozen=True)
+class Audio:
+    samples: npt.NDArray[np.int16]
+    rate: int
+
+    @property
+    def seconds(self) -> float:
+        return len(self.samples) / self.rate
+
+    def to_bytes(self) -> bytes:
+        return self.samples.astype("<i2").tobytes()
+
+
+def read_wav_bytes(data: bytes, source: str = "audio") -> Audio:
+    try:
+        with wave.open(io.BytesIO(data)) as w:
+            width, channels, rate = w.getsampwidth(), w.getnchannels(), w.getframerate()
+            frames = w.readframes(w.getnframes())
+    except (wave.Error, EOFError) as exc:
+        raise ConfigError(f"{source}: not a WAV file ({exc})") from None
+    if width != 2:
+        raise ConfigError(f"{source}: only 16-bit PCM WAV is supported")
+    samples = np.frombuffer(frames, dtype="<i2").reshape(-1, channels).mean(axis=1)
+    return Audio(samples.astype(np.int16), rate)
+
+
+def read_wav(path: Path) -> Audio:
+    if not path.is_file():
+        raise ConfigError(f"{path}: no such file")
+    return read_wav_bytes(path.read_bytes(), str(path))
+
+
+def write_wav(path: Path, audio: Audio) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with wave.open(str(path), "wb") as w:
+        w.setnchannels(1)
+        w.setsampwidth(2)
+        w.setframerate(audio.rate)
+        w.writeframes(audio.to_bytes())
+
+
+def resample(audio: Audio, rate: int = ASR_RATE) -> Audio:
+    if audio.rate == rate:
+        return audio
+    g = gcd(audio.rate, rate)
+    out = signal.resample_poly(audio.samples.astype(np.float64), rate // g, audio.rate // g)
+    return Audio(np.clip(out, -32768, 32767).astype(np.int16), rate)
+
+
+def preprocess(audio: Audio, gain_db: float = 0.0, highpass_hz: float = 0.0) -> Audio:
+    """A speaker's audio settings: remove rumble below ``highpass_hz``, then apply gain."""
+    x = audio.samples.astype(np.float64)
+    if highpass_hz > 0.0:
+        sos = signal.butter(2, highpass_hz, "highpass", fs=audio.rate, output="sos")
+        x = signal.sosfilt(sos, x)
+    x *= 10.0 ** (gain_db / 20.0)
+    return Audio(np.clip(x, -32768, 32767).astype(np.int16), audio.rate)

@@ -1,0 +1,69 @@
+"""``amiro chat``: a terminal conversation with the dialogue manager (offline sources), typed
+or, with ``--voice``, through the microphone (pocketsphinx, English)."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+
+from amiro.core.config import ConfigError
+from amiro.dialogue.actions import Actions
+from amiro.dialogue.domain import shipped_domain
+from amiro.dialogue.manager import DialogueManager
+from amiro.dialogue.sources import offline_sources
+from amiro.dialogue.understanding import Nlu
+
+PROMPT = "you> "
+
+
+def _typed() -> Iterator[str]:
+    while True:
+        try:
+            line = input(PROMPT)
+        except EOFError:
+            return
+        yield line
+
+
+def _spoken(lang: str) -> Iterator[str]:
+    from amiro.dialogue.asr_pocketsphinx import PocketsphinxRecognizer
+    from amiro.dialogue.audio import ASR_RATE, Audio
+    from amiro.dialogue.vad import UtteranceDetector
+
+    try:
+        import sounddevice  # type: ignore[import-untyped,import-not-found,unused-ignore]
+    except (ImportError, OSError):
+        raise ConfigError("chat --voice: needs the sounddevice package and PortAudio") from None
+    recognizer = PocketsphinxRecognizer("nlu", lang)
+    detector = UtteranceDetector()
+    samples_per_frame = detector.frame_bytes // 2
+    with sounddevice.RawInputStream(samplerate=ASR_RATE, channels=1, dtype="int16") as stream:
+        print("(listening; Ctrl-C to stop)", file=sys.stderr)
+        while True:
+            data, _ = stream.read(samples_per_frame)
+            utterance: Audio | None = detector.feed(bytes(data))
+            if utterance is not None:
+                text = recognizer.transcribe(utterance).text
+                print(f"{PROMPT}{text}")
+                yield text
+
+
+def run_chat(lang: str, voice: bool) -> int:
+    nlu = Nlu()
+    nlu.model(lang)  # train before the first prompt
+    got: list[tuple[str, dict[str, object]]] = []
+    manager = DialogueManager(
+        nlu, shipped_domain(), Actions(offline_sources(), lambda k, p: got.append((k, p)))
+    )
+    try:
+        for text in _spoken(lang) if voice else _typed():
+            if not text.strip():
+                continue
+            answer = manager.handle(text, lang, "user")
+            shown = " [display]" if answer.display and not answer.say else ""
+            print(f"robot> {answer.text}{shown}   ({answer.intent} {answer.entities})")
+            if answer.action == "utter_goodbye":
+                break
+    except KeyboardInterrupt:
+        pass
+    return 0

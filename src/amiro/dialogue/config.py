@@ -1,0 +1,46 @@
+"""Configuration of the dialogue stack: which NLU, TTS and ASR backends, and user profiles."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field
+
+from amiro.core.config import Section
+from amiro.dialogue.nlu import DEFAULT_THRESHOLD
+from amiro.dialogue.profiles import SpeakerProfile
+
+
+class TtsConfig(Section):
+    backend: Literal["espeak", "piper", "google"] = "espeak"
+    output: Literal["none", "wav", "speaker"] = Field(
+        default="none", description="none: the robot (or simulator) voices /amiro/say itself"
+    )
+    wav_dir: Path = Path("amiro-tts")
+    piper_voice: Path | None = None
+
+
+class AsrConfig(Section):
+    backend: Literal["pocketsphinx", "vosk", "google"] = "pocketsphinx"
+    grammar: Literal["nlu", "answers", "none"] = Field(
+        default="nlu",
+        description="pocketsphinx search: JSGF from the NLU data, yes/no/later, or LM",
+    )
+    vosk_model: Path | None = None
+    sim_audio: bool = Field(
+        default=False,
+        description="in the simulator, voice English replies with espeak-ng and recognise them",
+    )
+
+
+class DialogueConfig(Section):
+    nlu: Literal["amiro", "oracle"] = "amiro"
+    nlu_threshold: float = Field(default=DEFAULT_THRESHOLD, ge=0.0, le=1.0)
+    training_data: dict[Literal["en", "ro", "fr"], Path] = Field(
+        default_factory=dict, description="language -> Rasa-style YAML replacing the shipped data"
+    )
+    words_per_second: float = Field(default=2.5, gt=0.0)
+    tts: TtsConfig = Field(default_factory=TtsConfig)
+    asr: AsrConfig = Field(default_factory=AsrConfig)
+    profiles: dict[str, SpeakerProfile] = Field(default_factory=dict)

@@ -1,0 +1,90 @@
+"""``amiro nlu evaluate``: intent and entity accuracy, the confusion matrix in the shape of
+the paper's Tables 4–6, and the time per utterance, per language."""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from amiro.core.config import ConfigError
+from amiro.dialogue.nlu import Parse
+from amiro.dialogue.phrases import check_language
+from amiro.dialogue.text import normalize
+
+NAME_KEYS = ("person_entity", "location_entity")  # compared case- and diacritic-insensitively
+
+
+@dataclass(frozen=True)
+class Labelled:
+    lang: str
+    text: str
+    intent: str
+    entities: dict[str, str]
+
+
+def read_jsonl(path: Path) -> list[Labelled]:
+    if not path.is_file():
+        raise ConfigError(f"{path}: no such file")
+    rows: list[Labelled] = []
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            obj = json.loads(line)
+            rows.append(
+                Labelled(
+                    check_language(str(obj["lang"])),
+                    str(obj["text"]),
+                    str(obj["intent"]),
+                    {str(k): str(v) for k, v in (obj.get("entities") or {}).items()},
+                )
+            )
+        except (json.JSONDecodeError, KeyError, TypeError, AttributeError) as exc:
+            raise ConfigError(f"{path}:{number}: not a labelled utterance ({exc})") from None
+    if not rows:
+        raise ConfigError(f"{path}: no utterances")
+    return rows
+
+
+def same_value(key: str, expected: str, got: str | None) -> bool:
+    if got is None:
+        return False
+    if key in NAME_KEYS:
+        return normalize(expected) == normalize(got)
+    return expected == got
+
+
+def evaluate(rows: list[Labelled], parse: Callable[[str, str], Parse]) -> dict[str, Any]:
+    """Per language: ``{n, intent_accuracy, entity_accuracy, confusion, ms_per_utterance}``."""
+    out: dict[str, Any] = {}
+    for lang in sorted({r.lang for r in rows}):
+        subset = [r for r in rows if r.lang == lang]
+        parse(lang, subset[0].text)  # trains the model outside the timing
+        confusion: dict[str, dict[str, int]] = {}
+        right = pairs = pairs_right = 0
+        errors: list[dict[str, Any]] = []
+        start = time.perf_counter()
+        results = [parse(lang, r.text) for r in subset]
+        elapsed = time.perf_counter() - start
+        for r, p in zip(subset, results, strict=True):
+            row = confusion.setdefault(r.intent, {})
+            row[p.intent] = row.get(p.intent, 0) + 1
+            right += p.intent == r.intent
+            ok = [same_value(k, v, p.entities.get(k)) for k, v in r.entities.items()]
+            pairs += len(ok)
+            pairs_right += sum(ok)
+            if p.intent != r.intent or not all(ok):
+                errors.append({"text": r.text, "intent": p.intent, "entities": p.entities})
+        out[lang] = {
+            "n": len(subset),
+            "intent_accuracy": right / len(subset),
+            "entity_accuracy": pairs_right / pairs if pairs else 1.0,
+            "confusion": confusion,
+            "ms_per_utterance": 1000.0 * elapsed / len(subset),
+            "errors": errors,
+        }
+    return out

@@ -1,0 +1,78 @@
+"""``build_dialogue``: the dialogue stack from its configuration, for ``system.py``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from amiro.core.registry import create
+from amiro.core.runtime import Runtime
+from amiro.dialogue import asr as _asr  # noqa: F401 - registers the ASR backends
+from amiro.dialogue.actions import Actions, Submit
+from amiro.dialogue.asr import Recognizer
+from amiro.dialogue.audio_loop import AudioLoopUnderstanding
+from amiro.dialogue.config import DialogueConfig
+from amiro.dialogue.domain import shipped_domain
+from amiro.dialogue.manager import DialogueManager
+from amiro.dialogue.node import DialogueNode, TtsNode
+from amiro.dialogue.oracle import OracleUnderstanding
+from amiro.dialogue.output import BusSpeechOutput
+from amiro.dialogue.ports import SpeechOutput, Understanding
+from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.sources import Sources, offline_sources
+from amiro.dialogue.tts import Synthesizer
+from amiro.dialogue.understanding import Nlu
+
+
+@dataclass
+class Dialogue:
+    speech: SpeechOutput
+    nlu: Understanding
+    manager: DialogueManager
+    node: DialogueNode
+    tts: TtsNode | None = None
+
+
+def make_synthesizer(cfg: DialogueConfig) -> Synthesizer:
+    kwargs = {"voice": cfg.tts.piper_voice} if cfg.tts.backend == "piper" else {}
+    synthesizer: Synthesizer = create("tts", cfg.tts.backend, **kwargs)
+    return synthesizer
+
+
+def make_recognizer(
+    cfg: DialogueConfig, grammar: str | None = None, lang: str = "en"
+) -> Recognizer:
+    backend = cfg.asr.backend
+    if backend == "pocketsphinx":
+        kwargs: dict[str, object] = {"grammar": grammar or cfg.asr.grammar, "lang": lang}
+    elif backend == "vosk":
+        kwargs = {"model": cfg.asr.vosk_model}
+    else:
+        kwargs = {"lang": lang}
+    recognizer: Recognizer = create("asr", backend, **kwargs)
+    return recognizer
+
+
+def build_dialogue(
+    runtime: Runtime,
+    cfg: DialogueConfig,
+    profiles: dict[str, SpeakerProfile] | None = None,
+    submit: Submit | None = None,
+    sources: Sources | None = None,
+) -> Dialogue:
+    """Speech output, understanding for Listen, and the dialogue manager node (added to the
+    runtime).  ``submit(kind, payload)`` hands behaviour requests (``go_to``) to the engine."""
+    profiles = {**cfg.profiles, **(profiles or {})}
+    nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
+    understanding: Understanding = nlu
+    if cfg.nlu == "oracle":
+        understanding = OracleUnderstanding()
+    elif cfg.asr.sim_audio:
+        recognizer = make_recognizer(cfg, grammar="answers")
+        understanding = AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
+    manager = DialogueManager(nlu, shipped_domain(), Actions(sources or offline_sources(), submit))
+    node = runtime.add(DialogueNode(manager, profiles))
+    tts = None
+    if cfg.tts.output != "none":
+        tts = runtime.add(TtsNode(make_synthesizer(cfg), profiles, cfg.tts.output, cfg.tts.wav_dir))
+    speech = BusSpeechOutput(runtime.bus, cfg.words_per_second)
+    return Dialogue(speech, understanding, manager, node, tts)

@@ -1,0 +1,58 @@
+"""The household's NLU: one trained model per language, chosen per utterance from the
+speaker's profile or the language the utterance was heard in.  Implements the Listen port."""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+from amiro.core.messages import SpeechHeard
+from amiro.dialogue.entities import Entity
+from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse
+from amiro.dialogue.phrases import LANGUAGES, check_language
+from amiro.dialogue.profiles import SpeakerProfile, language_of
+from amiro.dialogue.training_data import load_training_data, shipped_training_data
+
+
+@cache
+def shipped_model(lang: str, threshold: float = DEFAULT_THRESHOLD) -> LanguageNlu:
+    """Trained once per process: the shipped data never changes at run time."""
+    return LanguageNlu(shipped_training_data(lang), threshold)
+
+
+class Nlu:
+    def __init__(
+        self,
+        threshold: float = DEFAULT_THRESHOLD,
+        training_data: dict[str, Path] | None = None,
+        profiles: dict[str, SpeakerProfile] | None = None,
+    ) -> None:
+        self.threshold = threshold
+        self.training_data = dict(training_data or {})
+        self.profiles = dict(profiles or {})
+        self._custom: dict[str, LanguageNlu] = {}
+
+    def model(self, lang: str) -> LanguageNlu:
+        check_language(lang)
+        path = self.training_data.get(lang)
+        if path is None:
+            return shipped_model(lang, self.threshold)
+        if lang not in self._custom:
+            self._custom[lang] = LanguageNlu(load_training_data(path), self.threshold)
+        return self._custom[lang]
+
+    def train_all(self) -> None:
+        for lang in LANGUAGES:
+            self.model(lang)
+
+    def parse(self, text: str, lang: str) -> Parse:
+        return self.model(lang).parse(text)
+
+    def entities(self, text: str, lang: str, keys: tuple[str, ...]) -> list[Entity]:
+        """Entities of the given keys whatever the intent: answers to "in which room?"."""
+        return self.model(lang).extractor.extract(text, keys)
+
+    def intent(self, heard: SpeechHeard) -> tuple[str, float]:
+        lang = heard.lang if heard.lang in LANGUAGES else None
+        parsed = self.parse(heard.text, lang or language_of(self.profiles, heard.speaker, "en"))
+        return parsed.intent, parsed.confidence * heard.confidence

@@ -1,0 +1,71 @@
+"""``amiro nav ...`` and ``amiro slam ...`` commands."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from amiro.cli_support import add_json_flag, emit_json
+from amiro.core.config import ConfigError
+from amiro.core.gridmap import load_map
+
+
+def register(sub: Any) -> None:
+    nav = sub.add_parser("nav", help="navigation evaluations and speed benchmarks")
+    nav_sub = nav.add_subparsers(dest="nav_command", metavar="COMMAND")
+    bm = nav_sub.add_parser("benchmark", help="random feasible start/goal pairs on a map")
+    bm.add_argument("--map", required=True, help="ROS map_server YAML (PGM or PNG image)")
+    bm.add_argument("--trials", type=int, default=20)
+    bm.add_argument("--seed", type=int, default=0)
+    add_json_flag(bm)
+    bm.set_defaults(handler=_benchmark)
+    bench = nav_sub.add_parser("bench", help="per-cycle speed: A*, DWA, SLAM, AMCL")
+    bench.add_argument("--seed", type=int, default=0)
+    add_json_flag(bench)
+    bench.set_defaults(handler=_bench)
+
+    slam = sub.add_parser("slam", help="2D lidar SLAM")
+    slam_sub = slam.add_subparsers(dest="slam_command", metavar="COMMAND")
+    run = slam_sub.add_parser("run", help="SLAM over a CARMEN log, scored against its reference")
+    run.add_argument("--carmen", required=True, help="CARMEN log (FLASER and ODOM lines)")
+    run.add_argument("--out", default="slam_out", help="directory for map and trajectory")
+    run.add_argument("--fov-deg", type=float, default=180.0, help="laser field of view")
+    run.add_argument("--max-range", type=float, default=12.0, help="ignore returns beyond (m)")
+    add_json_flag(run)
+    run.set_defaults(handler=_slam_run)
+
+
+def _print(result: dict[str, Any], as_json: bool) -> None:
+    if as_json:
+        emit_json(result)
+    else:
+        for key, value in result.items():
+            print(f"{key}: {value}")
+
+
+def _benchmark(args: argparse.Namespace) -> int:
+    from amiro.navigation.benchmark import run_benchmark
+
+    if args.trials < 1:
+        raise ConfigError("--trials must be at least 1")
+    grid = load_map(Path(args.map))
+    _print(run_benchmark(grid, args.trials, np.random.default_rng(args.seed)), args.json)
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from amiro.navigation.bench import run_bench
+
+    _print(run_bench(np.random.default_rng(args.seed)), args.json)
+    return 0
+
+
+def _slam_run(args: argparse.Namespace) -> int:
+    from amiro.navigation.slam_run import run_slam
+
+    result = run_slam(Path(args.carmen), Path(args.out), args.fov_deg, args.max_range)
+    _print(result, args.json)
+    return 0

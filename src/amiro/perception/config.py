@@ -1,0 +1,59 @@
+"""Configuration of the perception module (the ``perception:`` section)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field
+
+from amiro.core.config import Section
+
+
+class SimDetectorSection(Section):
+    """Error profile of the simulator's person detector, fitted to the paper's Tables 11–13."""
+
+    error_rate: dict[str, float] = Field(
+        default_factory=lambda: {
+            "standing": 0.0,
+            "sitting_desk": 0.10,
+            "sitting_couch": 0.03,
+            "lying_couch": 0.78,
+        },
+        description="counting errors per person at the mean distance, by posture",
+    )
+    duplicate_share: float = Field(default=0.3, ge=0.0, le=1.0)
+    false_positives_per_frame: float = Field(default=0.005, ge=0.0)
+    box_jitter: float = Field(default=0.03, ge=0.0, description="sigma, fraction of box size")
+
+
+class FaceSection(Section):
+    backend: Literal["sim", "dlib"] = Field(
+        default="sim", description="sim: the simulator's error model; dlib: face_recognition"
+    )
+    threshold: float = Field(default=0.6, gt=0.0, description="max embedding distance to match")
+    recognise_rate: float = Field(default=0.95, ge=0.0, le=1.0, description="sim, at 1 m")
+    rate_loss_per_m: float = Field(default=0.04, ge=0.0)
+    confusion_rate: float = Field(default=0.01, ge=0.0, le=1.0)
+    backlit_rate: float = Field(default=0.0, ge=0.0, le=1.0, description="sim, facing light")
+    gallery: dict[str, list[Path]] = Field(
+        default_factory=dict, description="dlib: name -> face images to enrol"
+    )
+
+
+class TrackingSection(Section):
+    gate_m: float = Field(default=0.8, gt=0.0)
+    forget_s: float = Field(default=3.0, gt=0.0)
+    smoothing: float = Field(default=0.5, gt=0.0, le=1.0)
+
+
+class PerceptionConfig(Section):
+    backend: Literal["sim", "oracle"] = Field(
+        default="sim",
+        description="sim: simulated detector + faces + estimator + tracker; oracle: ground truth",
+    )
+    estimator: Literal["improved", "paper"] = "improved"
+    position_noise_m: float = Field(default=0.1, ge=0.0, description="oracle backend only")
+    detector: SimDetectorSection = Field(default_factory=SimDetectorSection)
+    faces: FaceSection = Field(default_factory=FaceSection)
+    tracking: TrackingSection = Field(default_factory=TrackingSection)

@@ -1,0 +1,102 @@
+"""The simulator's object detector: boxes from the camera model with YOLO's error profile.
+
+The paper (Tables 11–13) counts detections per image: people lying down are missed or split
+in two far more often than anyone else, errors grow with distance, and a few false positives
+appear.  This backend reproduces those counting errors on the simulator's observations.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from amiro.core.messages import BoundingBox2D, Detection2D
+from amiro.perception.config import SimDetectorSection
+from amiro.perception.ports import Frame
+from amiro.sim.messages import CameraObservation
+
+
+def distance_factor(distance: float) -> float:
+    """Relative error rate by distance (mean 1 over 2–5 m), after the paper's Table 13."""
+    return min(0.5 + 0.4 * max(distance - 2.0, 0.0), 1.3)
+
+
+class SimDetector:
+    """Person boxes from observations: jittered, sometimes missed or duplicated."""
+
+    def __init__(
+        self,
+        rng: np.random.Generator,
+        cfg: SimDetectorSection | None = None,
+        image_size: tuple[int, int] = (640, 480),
+    ) -> None:
+        self.rng = rng
+        self.cfg = cfg or SimDetectorSection()
+        self.width, self.height = image_size
+
+    def error_rate(self, obs: CameraObservation) -> float:
+        return self.cfg.error_rate.get(obs.posture, 0.0) * distance_factor(obs.depth)
+
+    def detect(self, frame: Frame) -> list[Detection2D]:
+        found: list[Detection2D] = []
+        for obs in frame.observations:
+            found.extend(self._person(obs))
+        for _ in range(int(self.rng.poisson(self.cfg.false_positives_per_frame))):
+            found.append(self._false_positive())
+        return found
+
+    def _person(self, obs: CameraObservation) -> list[Detection2D]:
+        rate = self.error_rate(obs)
+        draw = float(self.rng.random())
+        if draw < rate * (1.0 - self.cfg.duplicate_share):
+            return []
+        score = float(np.clip(0.95 - 0.04 * obs.depth + 0.03 * self.rng.standard_normal(), 0.3, 1))
+        box = self._jitter(obs.bbox)
+        if draw >= rate:
+            return [Detection2D("person", score, box)]
+        # A duplicate: a wide (lying) body split in two, else a second, upper-body box.
+        b = box
+        if b.width > b.height:
+            halves = (b.cx - b.width / 4, b.cx + b.width / 4)
+            return [
+                Detection2D("person", score, BoundingBox2D(c, b.cy, b.width / 2, b.height))
+                for c in halves
+            ]
+        upper = BoundingBox2D(b.cx, b.cy - b.height / 4, b.width, b.height / 2)
+        return [Detection2D("person", score, box), Detection2D("person", 0.8 * score, upper)]
+
+    def _jitter(self, b: BoundingBox2D) -> BoundingBox2D:
+        j = self.cfg.box_jitter * self.rng.standard_normal(4)
+        w = max(b.width * (1 + j[2]), 1.0)
+        h = max(b.height * (1 + j[3]), 1.0)
+        return BoundingBox2D(b.cx + j[0] * b.width, b.cy + j[1] * b.height, w, h)
+
+    def _false_positive(self) -> Detection2D:
+        h = float(self.rng.uniform(0.15, 0.6)) * self.height
+        w = h * float(self.rng.uniform(0.3, 0.6))
+        cx = float(self.rng.uniform(w / 2, self.width - w / 2))
+        cy = float(self.rng.uniform(h / 2, self.height - h / 2))
+        return Detection2D("person", float(self.rng.uniform(0.3, 0.6)), BoundingBox2D(cx, cy, w, h))
+
+
+def iou(a: BoundingBox2D, b: BoundingBox2D) -> float:
+    """Intersection over union of two boxes."""
+    ix = min(a.cx + a.width / 2, b.cx + b.width / 2) - max(a.cx - a.width / 2, b.cx - b.width / 2)
+    iy = min(a.cy + a.height / 2, b.cy + b.height / 2) - max(
+        a.cy - a.height / 2, b.cy - b.height / 2
+    )
+    if ix <= 0 or iy <= 0:
+        return 0.0
+    inter = ix * iy
+    union = a.width * a.height + b.width * b.height - inter
+    return inter / union if union > 0 else 0.0
+
+
+def best_match(
+    box: BoundingBox2D, observations: list[CameraObservation], min_iou: float = 0.2
+) -> CameraObservation | None:
+    """The observation whose box overlaps ``box`` most (at least ``min_iou``)."""
+    scored = [(iou(box, o.bbox), i) for i, o in enumerate(observations)]
+    best = max(scored, default=(0.0, -1))
+    return observations[best[1]] if best[0] >= min_iou and not math.isnan(best[0]) else None

@@ -1,0 +1,109 @@
+"""Assembles the people finder the behaviour tasks use, from the ``perception:`` config.
+
+The ``sim`` backend is the module's real pipeline run on the simulator: detector boxes, the
+depth of each box, face identity, the 3D estimator with the head joints and the robot's
+pose, and the tracker.  The ``oracle`` backend is kept for tests and as a baseline.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from amiro.core.messages import Detection2D, Point
+from amiro.perception.config import PerceptionConfig
+from amiro.perception.estimation import (
+    CameraGeometry,
+    FloatArray,
+    Views,
+    improved,
+    paper_formula,
+)
+from amiro.perception.oracle import OraclePeopleFinder
+from amiro.perception.ports import Frame, PeopleFinder, SeenPerson
+from amiro.perception.sim_detector import SimDetector, best_match
+from amiro.perception.sim_faces import SimFaceIdentifier
+from amiro.perception.tracking import Measurement, PeopleTracker
+from amiro.sim.messages import CameraObservation
+from amiro.sim.simulator import Simulation
+
+# Depth the simulator's camera reports for a box no resident explains (a false positive):
+# whatever lies behind it, drawn in this range (m).
+BACKGROUND_DEPTH = (1.0, 6.0)
+
+
+class SimPeopleFinder:
+    """Detector → depth → face → 3D estimate → tracks, on the simulated head camera."""
+
+    def __init__(self, sim: Simulation, rng: np.random.Generator, cfg: PerceptionConfig) -> None:
+        self.sim = sim
+        self.cfg = cfg
+        camera = sim.residents.camera
+        self.geometry = CameraGeometry.from_info(
+            camera.info(0.0), camera.params.height, camera.params.forward
+        )
+        rng_detect, rng_face, self.rng = rng.spawn(3)
+        self.detector = SimDetector(
+            rng_detect, cfg.detector, (self.geometry.width, self.geometry.height)
+        )
+        self.faces = SimFaceIdentifier(rng_face, (r.name for r in sim.config.residents), cfg.faces)
+        self.tracker = PeopleTracker(cfg.tracking)
+
+    def look(self) -> list[SeenPerson]:
+        observations = self.sim.observe()
+        detections = [
+            d for d in self.detector.detect(Frame(observations=observations)) if d.label == "person"
+        ]
+        found = self._measure(detections, observations)
+        tracks = self.tracker.update(self.sim.robot.now(), found)
+        return [
+            SeenPerson(t.name, t.position, t.score, t.id, t.face_backlit)
+            for t in tracks
+            if t.confirmed
+        ]
+
+    def _measure(
+        self, detections: list[Detection2D], observations: list[CameraObservation]
+    ) -> list[Measurement]:
+        if not detections:
+            return []
+        matched = [best_match(d.bbox, observations) for d in detections]
+        # The simulator's camera reports the z-depth of the torso centre (not its surface).
+        depth = np.array(
+            [
+                o.depth if o is not None else float(self.rng.uniform(*BACKGROUND_DEPTH))
+                for o in matched
+            ]
+        )
+        names = {id(o): self.faces.identify(o) for o in matched if o is not None}
+        points = self.estimate(
+            np.array([d.bbox.cx for d in detections]),
+            np.array([d.bbox.cy for d in detections]),
+            depth,
+        )
+        return [
+            Measurement(
+                Point(*map(float, p)),
+                d.score,
+                names.get(id(o)) if o is not None else None,
+                bool(o is not None and o.face_visible and o.backlit),
+            )
+            for d, o, p in zip(detections, matched, points, strict=True)
+        ]
+
+    def estimate(self, u: FloatArray, v: FloatArray, depth: FloatArray) -> FloatArray:
+        """Map-frame points of detections at pixels (u, v) with depth readings."""
+        robot = self.sim.robot
+        pose = robot.true_pose  # stands for the localisation estimate until AMCL lands
+        views = Views.single(pose.x, pose.y, pose.theta, robot.head_yaw, robot.head_pitch, len(u))
+        if self.cfg.estimator == "paper":
+            return paper_formula(self.geometry, u, v, depth, views)
+        return improved(self.geometry, u, v, depth, views)
+
+
+def build_people_finder(
+    sim: Simulation, rng: np.random.Generator, cfg: PerceptionConfig
+) -> PeopleFinder:
+    """The people finder ``cfg.backend`` names."""
+    if cfg.backend == "oracle":
+        return OraclePeopleFinder(sim, rng, cfg.position_noise_m)
+    return SimPeopleFinder(sim, rng, cfg)

@@ -1,0 +1,91 @@
+"""Configuration of one deployment process (``amiro node NAME --config FILE``).
+
+A process has a role: ``sim`` (the robot: simulator, or a real robot's adapter), ``edge``
+(navigation, perception, activity, behaviour engine) or ``cloud`` (smart environment,
+notifications' ledger, watchdog).  Unset topic lists take the role's defaults below.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field
+
+from amiro.core.config import Section
+from amiro.ros2.env import MAX_DOMAIN_ID
+
+Role = Literal["sim", "edge", "cloud"]
+
+DEFAULT_PUBLISH: dict[str, tuple[str, ...]] = {
+    "sim": (
+        "/scan",
+        "/odom",
+        "/tf",
+        "/map",
+        "/joint_states",
+        "/amiro/sim/ground_truth",
+        "/amiro/sim/observations",
+        "/amiro/speech/heard",
+        "/amiro/heartbeat",
+    ),
+    "edge": (
+        "/cmd_vel",
+        "/amiro/head/cmd",
+        "/amiro/say",
+        "/amiro/display",
+        "/amiro/events",
+        "/amiro/notifications/ack",
+        "/amiro/heartbeat",
+    ),
+    "cloud": ("/amiro/notifications", "/amiro/env/sensors"),
+}
+DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
+    "sim": ("/cmd_vel", "/amiro/head/cmd", "/amiro/say"),
+    "edge": (
+        "/scan",
+        "/amiro/sim/ground_truth",
+        "/amiro/sim/observations",
+        "/amiro/speech/heard",
+        "/amiro/notifications",
+    ),
+    "cloud": ("/amiro/events", "/amiro/notifications/ack", "/amiro/heartbeat"),
+}
+
+
+class RosSection(Section):
+    domain_id: int | None = Field(default=None, ge=0, le=MAX_DOMAIN_ID)
+    localhost_only: bool = True
+    node_name: str | None = Field(default=None, description="default: amiro_<process name>")
+
+
+class NodeConfig(Section):
+    role: Role
+    ros: RosSection = Field(default_factory=RosSection)
+    scenario: Literal["hydration"] | None = Field(
+        default="hydration", description="the household and triggers to load"
+    )
+    system: Path | None = Field(default=None, description="SystemConfig YAML for the scenario")
+    speed: float | None = Field(default=1.0, gt=0, description="sim: sim seconds per real second")
+    wait_for: tuple[str, ...] = Field(
+        default=(), description="sim: ROS node names to wait for before time starts"
+    )
+    wait_timeout_s: float = Field(default=30.0, gt=0)
+    publish: tuple[str, ...] | None = None
+    subscribe: tuple[str, ...] | None = None
+    remap: dict[str, str] = Field(default_factory=dict)
+    heartbeat_s: float = Field(default=1.0, gt=0)
+    watch: dict[str, float] = Field(
+        default_factory=dict, description="cloud: process name -> heartbeat timeout (s)"
+    )
+    stop_after_acks: int | None = Field(default=None, ge=1)
+    duration_s: float | None = Field(default=None, gt=0)
+
+    def topics_out(self) -> tuple[str, ...]:
+        return DEFAULT_PUBLISH[self.role] if self.publish is None else self.publish
+
+    def topics_in(self) -> tuple[str, ...]:
+        return DEFAULT_SUBSCRIBE[self.role] if self.subscribe is None else self.subscribe
+
+    def ros_node_name(self, process: str) -> str:
+        return self.ros.node_name or f"amiro_{process}"

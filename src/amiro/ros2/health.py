@@ -1,0 +1,120 @@
+"""Liveness across processes: heartbeats, a watchdog, and notifications owed to the carers.
+
+Every robot-side and edge process publishes a :class:`Heartbeat`; the cloud's
+:class:`Watchdog` raises ``node_lost`` / ``node_back`` events on ``/amiro/events`` when
+one stops and comes back.  The :class:`NotificationLedger` keeps each notification until it
+is acknowledged and re-sends the pending ones when the edge comes back, so a behaviour cut
+short by a crashed edge runs again on the restarted one (at-least-once delivery).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from amiro.behavior.engine import EVENTS_TOPIC
+from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
+from amiro.core.node import Node
+from amiro.environment.topics import NOTIFICATIONS_TOPIC
+from amiro.ros2.boundary import HEARTBEAT_TOPIC, Heartbeat
+
+
+class HeartbeatNode(Node):
+    def __init__(self, process: str, period_s: float = 1.0) -> None:
+        super().__init__("heartbeat")
+        self.process = process
+        self.period = period_s
+
+    def on_start(self) -> None:
+        self.pub = self.create_publisher(HEARTBEAT_TOPIC, Heartbeat)
+        self._beat()
+        self.create_timer(self.period, self._beat)
+
+    def _beat(self) -> None:
+        self.pub.publish(Heartbeat(self.process, self.now(), os.getpid()))
+
+
+@dataclass
+class Peer:
+    last_seen: float
+    pid: int
+    alive: bool = True
+    lost: int = 0
+
+
+class Watchdog(Node):
+    """Declares a process lost after ``timeout_s`` without heartbeat (clock time)."""
+
+    def __init__(self, watched: dict[str, float], check_s: float = 0.5) -> None:
+        super().__init__("watchdog")
+        self.watched = watched
+        self.check_s = check_s
+        self.peers: dict[str, Peer] = {}
+
+    def on_start(self) -> None:
+        self.events = self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
+        self.create_subscription(HEARTBEAT_TOPIC, Heartbeat, self._on_beat, depth=50)
+        self.create_timer(self.check_s, self._check)
+
+    def _on_beat(self, beat: Heartbeat) -> None:
+        if beat.node not in self.watched:
+            return
+        peer = self.peers.get(beat.node)
+        if peer is None:
+            self.peers[beat.node] = Peer(self.now(), beat.pid)
+            self._event("node_up", beat.node, pid=beat.pid)
+            return
+        peer.last_seen = self.now()
+        if not peer.alive or peer.pid != beat.pid:
+            peer.alive = True
+            peer.pid = beat.pid
+            self._event("node_back", beat.node, pid=beat.pid)
+
+    def _check(self) -> None:
+        for name, peer in self.peers.items():
+            if peer.alive and self.now() - peer.last_seen > self.watched[name]:
+                peer.alive = False
+                peer.lost += 1
+                self._event("node_lost", name, silent_s=round(self.now() - peer.last_seen, 2))
+
+    def _event(self, kind: str, node: str, **detail: object) -> None:
+        self.log.warning("%s: %s", kind, node)
+        self.events.publish(BehaviorEvent(self.now(), kind, detail={"node": node, **detail}))
+
+
+class NotificationLedger(Node):
+    """Remembers unacknowledged notifications; re-sends them when ``edge`` comes back."""
+
+    def __init__(self, edge: str = "edge", resend_delay_s: float = 1.0) -> None:
+        super().__init__("notification_ledger")
+        self.edge = edge
+        self.resend_delay_s = resend_delay_s
+        self.pending: dict[str, Notification] = {}
+        self.resent = 0
+
+    def on_start(self) -> None:
+        self.pub = self.create_publisher(NOTIFICATIONS_TOPIC, Notification)
+        self.events = self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
+        self.create_subscription(NOTIFICATIONS_TOPIC, Notification, self._on_note, depth=100)
+        self.create_subscription(ACK_TOPIC, Acknowledgement, self._on_ack, depth=100)
+        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=1000)
+
+    def _on_note(self, note: Notification) -> None:
+        self.pending.setdefault(note.id, note)
+
+    def _on_ack(self, ack: Acknowledgement) -> None:
+        self.pending.pop(ack.id, None)
+
+    def _on_event(self, event: BehaviorEvent) -> None:
+        if event.type == "node_back" and event.detail.get("node") == self.edge:
+            # Give the new edge's subscriptions a moment to be discovered.
+            self.call_later(self.resend_delay_s, self._resend)
+
+    def _resend(self) -> None:
+        for note in list(self.pending.values()):
+            self.resent += 1
+            self.events.publish(
+                BehaviorEvent(self.now(), "notification_redelivered", detail={"id": note.id})
+            )
+            self.pub.publish(note)

@@ -1,0 +1,159 @@
+"""One deployment process: its runtime, its role, the bridge, and a clean shutdown.
+
+The ``sim`` role owns time (a paced SimClock, published on ``/clock``) and waits for the
+processes named in ``wait_for`` before starting it; the other roles follow that clock.
+SIGTERM and SIGINT stop the process cleanly: nodes stopped, rclpy shut down, report written.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import signal
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from types import FrameType
+from typing import Any, TextIO
+
+from amiro.behavior.engine import EVENTS_TOPIC
+from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core.clock import Clock, SimClock, wall_seconds
+from amiro.core.config import ConfigError, load
+from amiro.core.messages import Acknowledgement, BehaviorEvent
+from amiro.core.runtime import Runtime
+from amiro.ros2.bridge import Ros2Bridge
+from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
+from amiro.ros2.config import NodeConfig
+from amiro.ros2.context import RosContext
+from amiro.ros2.roles import BUILDERS
+from amiro.scenarios.hydration import HydrationOptions, scenario_config
+from amiro.system import SystemConfig
+
+log = logging.getLogger("amiro.ros2.process")
+
+
+class EventLog:
+    """Behaviour events and acknowledgements seen by this process, optionally as JSON lines."""
+
+    def __init__(self, runtime: Runtime, out: TextIO | None = None) -> None:
+        self.runtime = runtime
+        self.events: list[dict[str, Any]] = []
+        self.acks: list[Acknowledgement] = []
+        self.out = out
+        runtime.bus.subscribe(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=10_000)
+        runtime.bus.subscribe(ACK_TOPIC, Acknowledgement, self._on_ack, depth=1000)
+
+    def _write(self, record: dict[str, Any]) -> None:
+        if self.out is not None:
+            self.out.write(json.dumps(record, default=str) + "\n")
+            self.out.flush()
+
+    def _on_event(self, event: BehaviorEvent) -> None:
+        record = event.to_dict()
+        self.events.append(record)
+        self._write(record)
+
+    def _on_ack(self, ack: Acknowledgement) -> None:
+        self.acks.append(ack)
+        self._write(
+            {
+                "t": round(self.runtime.clock.now(), 3),
+                "type": "ack_received",
+                "id": ack.id,
+                "status": ack.status,
+            }
+        )
+
+
+def system_config(node: NodeConfig, seed: int) -> SystemConfig:
+    if node.scenario == "hydration":
+        path = str(node.system) if node.system is not None else None
+        return scenario_config(HydrationOptions(seed=seed, config_path=path))
+    return load(SystemConfig, node.system) if node.system is not None else SystemConfig()
+
+
+@contextmanager
+def _stop_on_signals() -> Iterator[None]:
+    def raise_interrupt(signum: int, frame: FrameType | None) -> None:
+        raise KeyboardInterrupt
+
+    previous = {s: signal.signal(s, raise_interrupt) for s in (signal.SIGTERM, signal.SIGINT)}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def run_process(
+    process: str,
+    node: NodeConfig,
+    seed: int = 1,
+    events_path: Path | None = None,
+) -> dict[str, Any]:
+    """Run one process until its stop condition or a signal; returns its report."""
+    cfg = system_config(node, seed)
+    ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
+    clock: Clock = SimClock(speed=node.speed) if node.role == "sim" else FollowedClock(ros)
+    runtime = Runtime(clock, seed=seed)
+    bridge = runtime.add(
+        Ros2Bridge(ros, node.topics_out(), node.topics_in(), node.remap, name="ros2_bridge")
+    )
+    parts = BUILDERS[node.role](runtime, process, node, cfg)
+    out = events_path.open("a", encoding="utf-8") if events_path is not None else None
+    events = EventLog(runtime, out)
+    started = wall_seconds()
+    outcome = "stopped"
+    try:
+        with _stop_on_signals():
+            outcome = _run(runtime, ros, clock, node, events)
+    finally:
+        if isinstance(clock, FollowedClock):
+            clock.stopping = True
+        runtime.stop()
+        ros.close()
+        if out is not None:
+            out.close()
+    return {
+        "process": process,
+        "role": node.role,
+        "outcome": outcome,
+        "sim_time_s": round(runtime.clock.now(), 3),
+        "wall_time_s": round(wall_seconds() - started, 3),
+        "bridge": {
+            "out": bridge.stats.out,
+            "in": bridge.stats.inbound,
+            "errors": bridge.stats.errors,
+            "skipped": bridge.skipped,
+        },
+        "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in events.acks],
+        "events": events.events,
+        **parts.summary(),
+    }
+
+
+def _run(
+    runtime: Runtime, ros: RosContext, clock: Clock, node: NodeConfig, events: EventLog
+) -> str:
+    if isinstance(clock, FollowedClock):
+        if not clock.wait_first(node.wait_timeout_s):
+            raise ConfigError(
+                f"no /clock within {node.wait_timeout_s:g} s: is the robot process up?"
+            )
+    else:
+        runtime.add(ClockPublisher(ros))
+        missing = ros.wait_for_nodes(list(node.wait_for), node.wait_timeout_s)
+        if missing:
+            log.warning("starting without %s (not on the ROS graph)", ", ".join(missing))
+    runtime.start()
+    try:
+        while True:
+            if node.duration_s is not None and runtime.clock.now() >= node.duration_s:
+                return "duration"
+            if node.stop_after_acks is not None and len(events.acks) >= node.stop_after_acks:
+                runtime.spin_for(0.5)  # let the last events arrive
+                return "acknowledged"
+            runtime.spin_for(0.25)
+    except (KeyboardInterrupt, ClockStoppedError):
+        return "stopped"

@@ -1,0 +1,136 @@
+"""What each deployment role runs, built from the same SystemConfig as the embedded system.
+
+The split follows the paper's section 3.1: only bus topics cross between roles (see
+:mod:`amiro.ros2.config` for which), so any role can move to another process or machine.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, cast
+
+import amiro.behavior.tasks  # noqa: F401 - registers the task types
+from amiro.activity.oracle import OracleActivityRecognizer
+from amiro.behavior.engine import BehaviorEngine
+from amiro.behavior.handlers import HandlerRegistry, yaml_handler
+from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
+from amiro.core.config import ConfigError
+from amiro.core.gridmap import load_map
+from amiro.core.messages import OccupancyGrid
+from amiro.core.node import Node
+from amiro.core.runtime import Runtime
+from amiro.dialogue.oracle import OracleUnderstanding
+from amiro.dialogue.output import BusSpeechOutput
+from amiro.environment.rules import RulesNode
+from amiro.environment.simulated import SimulatedSensorsNode
+from amiro.navigation.stack import build_navigation
+from amiro.perception.oracle import OraclePeopleFinder
+from amiro.ros2.boundary import ObservationFeed, ObservationPublisher
+from amiro.ros2.config import NodeConfig
+from amiro.ros2.health import HeartbeatNode, NotificationLedger, Watchdog
+from amiro.sim.simulator import Simulation, build_sim
+from amiro.sim.world import World, default_home_path
+from amiro.system import SystemConfig, nav_map_path, shipped_behavior
+
+
+class MapPublisher(Node):
+    """Publishes the static map once on ``/map`` (latched on the ROS side)."""
+
+    def __init__(self, grid: OccupancyGrid) -> None:
+        super().__init__("map")
+        self.grid = grid
+
+    def on_start(self) -> None:
+        self.create_publisher("/map", OccupancyGrid).publish(self.grid)
+
+
+@dataclass
+class RoleParts:
+    """What a role built, as far as the process needs to know: a summary for its report."""
+
+    summary: Callable[[], dict[str, Any]]
+
+
+def build_sim_role(
+    runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
+) -> RoleParts:
+    sim = build_sim(runtime, cfg.sim)
+    runtime.add(ObservationPublisher(sim.observe))
+    grid = load_map(nav_map_path(cfg)).to_occupancy_grid(0.0)
+    runtime.add(MapPublisher(grid))
+    runtime.add(HeartbeatNode(process, node.heartbeat_s))
+
+    def summary() -> dict[str, Any]:
+        pose = sim.robot.true_pose
+        return {
+            "pose": [round(pose.x, 3), round(pose.y, 3), round(pose.theta, 3)],
+            "collisions": sim.robot.collisions,
+            "replies": len(sim.residents.replies),
+        }
+
+    return RoleParts(summary)
+
+
+def build_edge_role(
+    runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
+) -> RoleParts:
+    world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
+    places = {name: world.place(name) for name in world.home.places}
+    navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    feed = ObservationFeed(runtime.bus)
+    remote_sim = cast(Simulation, feed)  # the oracles only call observe()
+    rng_perception, rng_activity = runtime.rng.spawn(2)
+    modules = {
+        "clock": runtime.clock,
+        "world": world,
+        "navigation": navigation,
+        "perception": OraclePeopleFinder(
+            remote_sim, rng_perception, cfg.perception.position_noise_m
+        ),
+        "activity": OracleActivityRecognizer(remote_sim, rng_activity, cfg.activity.accuracy),
+        "speech": BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second),
+        "nlu": OracleUnderstanding(),
+    }
+    engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
+    handlers = HandlerRegistry(engine)
+    for kind, path in {"hydration": shipped_behavior("hydration"), **cfg.behavior.handlers}.items():
+        if not path.is_file():
+            raise ConfigError(f"behavior.handlers.{kind}: {path}: no such file")
+        handlers.register(kind, yaml_handler(path), replace=True)
+    profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
+    runtime.add(NotificationHandlerNode(engine, handlers, profiles))
+    runtime.add(HeartbeatNode(process, node.heartbeat_s))
+
+    def summary() -> dict[str, Any]:
+        return {
+            "runs": [{"id": r.id, "outcome": r.outcome} for r in engine.runs.values()],
+            "observations_received": feed.received,
+        }
+
+    return RoleParts(summary)
+
+
+def build_cloud_role(
+    runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
+) -> RoleParts:
+    world_rooms = list(
+        World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution).home.rooms
+    )
+    env = cfg.environment
+    runtime.add(SimulatedSensorsNode(world_rooms, env.sensors, env.home_id))
+    runtime.add(RulesNode(list(env.rules), env.home_id))
+    ledger = runtime.add(NotificationLedger())
+    watchdog = runtime.add(Watchdog(dict(node.watch)))
+
+    def summary() -> dict[str, Any]:
+        return {
+            "pending_notifications": sorted(ledger.pending),
+            "redelivered": ledger.resent,
+            "lost": {name: peer.lost for name, peer in watchdog.peers.items()},
+        }
+
+    return RoleParts(summary)
+
+
+BUILDERS = {"sim": build_sim_role, "edge": build_edge_role, "cloud": build_cloud_role}

@@ -1,0 +1,130 @@
+"""Deliver a notification to a person in another room when a door on the way is closed.
+
+Maria is on the living-room couch; the robot starts at its dock in the hallway and believes,
+as its map shows, that every door is open.  By default the hallway–living-room door is closed:
+the lidar sees it on the way, the plan no longer holds, and the robot re-plans.  John, in the
+hallway, is asked to open it; with ``help=False`` he declines and the robot re-plans again,
+through the kitchen.  With every way in closed, planning fails and says why.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from amiro.behavior.planning.executive import PlanExecutive
+from amiro.behavior.planning.knowledge import KnowledgeBase
+from amiro.behavior.planning.knowledge_node import KnowledgeNode
+from amiro.behavior.planning.planner import Engine, HomePlanner, PlanningConfig
+from amiro.behavior.planning.problem import Goal
+from amiro.behavior.planning.topology import topology_from_world
+from amiro.core.config import ConfigError
+from amiro.scenarios.common import base_config_data, run_scenario
+from amiro.sim.door_help import OPEN_DOOR_REQUEST
+from amiro.system import System, SystemConfig
+
+PERSON, HELPER = "maria", "john"
+KNOWN_ROOMS = {PERSON: "living_room", HELPER: "hallway"}
+HELPER_POSE = {"x": 2.4, "y": 4.6, "theta": 0.0}
+MESSAGE = "Maria, your daughter called: she will visit you this afternoon."
+OPEN_DOOR_TEXT = "John, could you please open the door for me?"
+CLEAR_TEXT = "John, could you please move what is in my way?"
+
+
+@dataclass(frozen=True)
+class DeliveryOptions:
+    seed: int = 1
+    closed_doors: tuple[str, ...] = ("living_door",)
+    help: bool = True
+    engine: Engine = "pyperplan"
+    live: bool = False
+    speed: float | None = None
+    config_path: str | None = None
+    timeout_s: float = 900.0
+
+
+def scenario_config(opts: DeliveryOptions) -> SystemConfig:
+    data = base_config_data(opts.config_path, opts.seed)
+    sim = data.setdefault("sim", {})
+    reply = "confirm" if opts.help else "deny"
+    residents = [
+        {"name": PERSON, "at": "couch_left", "posture": "sitting_couch", "activity": "play_phone"},
+        {"name": HELPER, "pose": HELPER_POSE, "script": {OPEN_DOOR_REQUEST: {"reply": reply}}},
+    ]
+    sim["residents"] = [
+        *residents,
+        *[r for r in sim.get("residents", []) if r["name"] not in KNOWN_ROOMS],
+    ]
+    sim["doors"] = {**sim.get("doors", {}), **dict.fromkeys(opts.closed_doors, False)}
+    env = data.setdefault("environment", {})
+    env["rules"] = []  # no hydration alert in this scenario
+    return SystemConfig.model_validate(data)
+
+
+def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
+    """Plan, deliver, re-plan as the home turns out to differ from the map; the report has the
+    contract's keys plus the plans and what the robot learned."""
+    cfg = scenario_config(opts)
+    parts: dict[str, Any] = {}
+
+    def setup(system: System) -> None:
+        world = system.sim.world
+        unknown = sorted(set(opts.closed_doors) - set(world.doors))
+        if unknown:
+            raise ConfigError(
+                f"unknown door(s) {', '.join(unknown)} (doors: {', '.join(world.doors)})"
+            )
+        kb = KnowledgeBase(topology_from_world(world), dict(KNOWN_ROOMS))
+        system.engine.modules["knowledge"] = kb
+
+        def pose() -> Any:
+            return system.navigation.pose
+
+        system.runtime.add(KnowledgeNode(kb, pose))
+        executive = system.runtime.add(
+            PlanExecutive(
+                HomePlanner(PlanningConfig(engine=opts.engine)),
+                kb,
+                system.engine,
+                pose,
+                world.room_at,
+            )
+        )
+        executive.request(
+            [Goal("notified", PERSON)],
+            {
+                "person": PERSON,
+                "message": MESSAGE,
+                "open_door_text": OPEN_DOOR_TEXT,
+                "clear_text": CLEAR_TEXT,
+                "lang": "en",
+            },
+            behavior="deliver_notification",
+        )
+        parts.update(kb=kb, executive=executive)
+
+    done = run_scenario(
+        cfg,
+        lambda _system: bool(parts) and parts["executive"].done,
+        live=opts.live,
+        speed=opts.speed,
+        timeout_s=opts.timeout_s,
+        setup=setup,
+    )
+    executive: PlanExecutive = parts["executive"]
+    kb: KnowledgeBase = parts["kb"]
+    return {
+        "scenario": "deliver_notification",
+        "outcome": executive.status if executive.done else "timeout",
+        "explanation": executive.explanation,
+        "seed": opts.seed,
+        "closed_doors": list(opts.closed_doors),
+        "help": opts.help,
+        **done.timing(),
+        "steps": [r.to_dict() for run in executive.runs for r in run.records],
+        "plans": [p.to_dict() for p in executive.plans],
+        "replans": max(len(executive.plans) - 1, 0),
+        "learned": [c.to_dict() for c in kb.changes],
+        "collisions": done.system.sim.robot.collisions,
+        "events": done.recorder.events,
+    }

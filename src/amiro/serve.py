@@ -1,0 +1,205 @@
+"""``amiro serve``: the whole system with the dashboard and, when configured, the MQTT bridge.
+
+The config file is a system config (``sim``, ``navigation``, ...) whose ``environment``
+section may use the smart-environment keys (database, MQTT, reminders, health rules), plus
+a ``web`` section.  Without a file, the simulated apartment with Maria on the couch.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import secrets
+import signal
+import sys
+import threading
+from dataclasses import dataclass
+from types import FrameType
+from typing import Any
+
+from fastapi import FastAPI
+from pydantic import SecretStr
+
+from amiro.core.clock import Clock, SimClock
+from amiro.core.config import ConfigError, parse, read_yaml
+from amiro.core.runtime import Runtime
+from amiro.environment.assembly import Environment, add_environment
+from amiro.environment.config import EnvironmentConfig
+from amiro.environment.mqtt_bridge import MqttConfig, parse_url
+from amiro.scenarios.hydration import HydrationOptions, scenario_config
+from amiro.system import System, SystemConfig, build_system
+from amiro.web.api import Backend
+from amiro.web.app import create_app
+from amiro.web.auth import Authenticator, hash_password
+from amiro.web.chat import ChatPort, UnavailableChat
+from amiro.web.config import WebConfig
+from amiro.web.gateway import GatewayNode
+from amiro.web.server import WebServer
+
+LEGACY_ENV_KEYS = {"home_id", "sensors", "rules"}
+
+
+@dataclass(frozen=True)
+class ServeConfig:
+    system: SystemConfig
+    environment: EnvironmentConfig
+    web: WebConfig
+
+
+def load_serve_config(path: str | None, seed: int = 1) -> ServeConfig:
+    """The file's sections, or the default household (Maria, no scripted heat wave)."""
+    if path is None:
+        system = scenario_config(HydrationOptions(seed=seed))
+        data: dict[str, Any] = system.model_dump(mode="json")
+        data["environment"]["sensors"]["changes"] = []
+    else:
+        raw = read_yaml(path)
+        if raw is not None and not isinstance(raw, dict):
+            raise ConfigError(f"{path}: expected a mapping at the top level")
+        data = dict(raw or {})
+    source = path or "<defaults>"
+    web = parse(WebConfig, data.pop("web", None), f"{source}: web")
+    env = parse(EnvironmentConfig, data.get("environment"), f"{source}: environment")
+    # system.py's environment section knows the first three keys; the rest are read here
+    data["environment"] = env.model_dump(mode="json", include=LEGACY_ENV_KEYS)
+    system = parse(SystemConfig, data, source)
+    return ServeConfig(system, env, web)
+
+
+def _apply_args(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
+    env, web = cfg.environment, cfg.web
+    if args.mqtt is not None:
+        parse_url(args.mqtt)
+        mqtt = (
+            env.mqtt.model_copy(update={"url": args.mqtt})
+            if env.mqtt
+            else MqttConfig(url=args.mqtt)
+        )
+        env = env.model_copy(update={"mqtt": mqtt})
+    if args.home is not None:
+        env = parse(EnvironmentConfig, {**env.model_dump(), "home_id": args.home}, "--home")
+    if args.db is not None:
+        env = env.model_copy(update={"database": args.db})
+    updates = {k: v for k, v in (("host", args.host), ("port", args.port)) if v is not None}
+    web = web.model_copy(update=updates)
+    system = cfg.system.model_copy(
+        update={"environment": cfg.system.environment.model_copy(update={"home_id": env.home_id})}
+    )
+    return ServeConfig(system, env, web)
+
+
+def make_authenticator(web: WebConfig) -> Authenticator:
+    password = web.admin_password or _secret_env("AMIRO_ADMIN_PASSWORD")
+    if password is None or not password.get_secret_value():
+        raise ConfigError("set the admin password in AMIRO_ADMIN_PASSWORD or web.admin_password")
+    token = web.api_token or _secret_env("AMIRO_API_TOKEN")
+    return Authenticator(
+        web.admin_user,
+        hash_password(password.get_secret_value()),
+        os.environ.get("AMIRO_SECRET_KEY") or secrets.token_urlsafe(32),
+        web.session_max_age_s,
+        token.get_secret_value() if token else None,
+    )
+
+
+def _secret_env(name: str) -> SecretStr | None:
+    value = os.environ.get(name)
+    return SecretStr(value) if value else None
+
+
+@dataclass
+class Served:
+    system: System
+    environment: Environment
+    gateway: GatewayNode
+    app: FastAPI
+
+    @property
+    def runtime(self) -> Runtime:
+        return self.system.runtime
+
+    def stop(self) -> None:
+        self.system.stop()
+        self.environment.close()
+
+
+def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Served:
+    """The system, the environment's nodes, the gateway and the app (nothing started)."""
+    system = build_system(cfg.system, clock)
+    rooms = list(system.sim.world.home.rooms)
+    env = add_environment(system.runtime, rooms, cfg.environment, system.sensors, system.rules)
+    gateway = system.runtime.add(GatewayNode(system))
+    backend = Backend(system, env, gateway, chat or UnavailableChat())
+    app = create_app(backend, make_authenticator(cfg.web), cfg.web)
+    return Served(system, env, gateway, app)
+
+
+class RuntimeLoop:
+    """Spins a runtime on its own thread until stopped (tests; the CLI uses the main thread)."""
+
+    def __init__(self, runtime: Runtime, step_s: float = 0.05) -> None:
+        self.runtime = runtime
+        self.step_s = step_s
+        self.stopping = threading.Event()
+        self.thread = threading.Thread(target=self.run, name="amiro-runtime", daemon=True)
+
+    def run(self) -> None:
+        while not self.stopping.is_set():
+            self.runtime.spin_for(self.step_s)
+
+    def start(self) -> None:
+        self.thread.start()
+
+    def stop(self) -> None:
+        self.stopping.set()
+        self.thread.join(timeout=10)
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "serve",
+        help="the whole system with the web dashboard (and MQTT when a broker is given)",
+        description="Runs the simulated home (or a configured robot), all modules, the web "
+        "dashboard and, with --mqtt or environment.mqtt, the MQTT bridge. The admin "
+        "password comes from AMIRO_ADMIN_PASSWORD or web.admin_password.",
+    )
+    p.add_argument("--config", help="YAML system config with optional web: section")
+    p.add_argument("--host", help="address to listen on (default 127.0.0.1)")
+    p.add_argument("--port", type=int, help="port (default 8080)")
+    p.add_argument("--mqtt", help="broker as mqtt://HOST:PORT")
+    p.add_argument("--home", help="home id in the MQTT topics (default home)")
+    p.add_argument("--db", help="health store URL (default: in memory)")
+    p.add_argument("--speed", type=float, default=1.0, help="simulated s per real s (default 1)")
+    p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    p.set_defaults(handler=_serve)
+
+
+def _serve(args: argparse.Namespace) -> int:
+    if args.speed <= 0:
+        raise ConfigError(f"--speed must be positive, got {args.speed}")
+    if args.port is not None and not 0 <= args.port <= 65535:
+        raise ConfigError(f"--port must be in 0..65535, got {args.port}")
+    cfg = _apply_args(load_serve_config(args.config, args.seed), args)
+    served = assemble(cfg, SimClock(speed=args.speed))
+    server = WebServer(served.app, cfg.web.host, cfg.web.port)
+    try:
+        server.start()
+    except RuntimeError as exc:
+        raise ConfigError(f"{cfg.web.host}:{cfg.web.port}: {exc}") from None
+    stopping = threading.Event()
+
+    def _on_term(_sig: int, _frame: FrameType | None) -> None:
+        stopping.set()
+
+    signal.signal(signal.SIGTERM, _on_term)
+    print(f"amiro serve: dashboard on {server.url}", file=sys.stderr)
+    served.system.start()
+    try:
+        while not stopping.is_set():
+            served.runtime.spin_for(0.05)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.stop()
+        served.stop()
+    return 0

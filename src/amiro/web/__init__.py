@@ -1,0 +1,1 @@
+"""The web dashboard: FastAPI app, its auth, the gateway into the runtime and static files."""

@@ -1,0 +1,165 @@
+"""The ``/api`` routes: state, map, behaviours, chat, health, smart home, notifications.
+
+Authentication and CSRF are enforced for the whole prefix by the app's middleware; these
+handlers only validate their inputs and hand work to the runtime through the gateway.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import date, datetime
+from typing import Any, TypeVar
+
+from fastapi import APIRouter, HTTPException, Path, Query, Request
+
+from amiro.behavior.graph import TaskGraph
+from amiro.behavior.task import TaskError, make_task, task_types
+from amiro.core.messages import Notification
+from amiro.environment.assembly import Environment
+from amiro.environment.messages import DEVICE_STATES, HEALTH_METRICS, DeviceCommand
+from amiro.environment.topics import DEVICE_COMMAND_TOPIC, NOTIFICATIONS_TOPIC
+from amiro.system import System
+from amiro.web.chat import ChatPort
+from amiro.web.gateway import GatewayNode
+from amiro.web.models import NAME, ChatBody, DeviceBody, ScenarioBody, SensorBody, TaskBody
+
+T = TypeVar("T")
+CALL_TIMEOUT_S = 10.0
+
+
+@dataclass
+class Backend:
+    """What the API serves: the system, its environment, the gateway and the chat port."""
+
+    system: System
+    environment: Environment
+    gateway: GatewayNode
+    chat: ChatPort
+
+
+def build_router(backend: Backend) -> APIRouter:
+    router = APIRouter(prefix="/api")
+    gw, system, env = backend.gateway, backend.system, backend.environment
+    counter = itertools.count(1)
+
+    async def on_runtime(job: Callable[[], T]) -> T:
+        try:
+            return await asyncio.wait_for(asyncio.wrap_future(gw.call(job)), CALL_TIMEOUT_S)
+        except TimeoutError:
+            raise HTTPException(503, "the robot's runtime did not answer in time") from None
+
+    @router.get("/me")
+    def me(request: Request) -> dict[str, Any]:
+        session = request.state.session
+        return {"user": request.state.user, "csrf": session.csrf if session else None}
+
+    @router.get("/state")
+    def state() -> dict[str, Any]:
+        return gw.snapshot
+
+    @router.get("/map")
+    def home_map() -> dict[str, Any]:
+        home = system.sim.world.home
+        return {
+            "name": home.name,
+            "size": list(home.size),
+            "rooms": {name: [list(p) for p in r.polygon] for name, r in home.rooms.items()},
+            "walls": [[list(w.a), list(w.b)] for w in home.walls],
+            "doors": [{"name": d.name, "a": list(d.a), "b": list(d.b)} for d in home.doors],
+            "furniture": [
+                {"name": f.name, "polygon": [list(p) for p in f.polygon]} for f in home.furniture
+            ],
+        }
+
+    @router.get("/behaviours")
+    def behaviours() -> dict[str, Any]:
+        return {"task_types": sorted(task_types()), "scenarios": system.handlers.kinds()}
+
+    @router.post("/tasks")
+    async def run_task(body: TaskBody) -> dict[str, Any]:
+        try:
+            task = make_task(body.type, body.params)
+        except TaskError as exc:
+            raise HTTPException(422, str(exc)) from None
+        graph = TaskGraph(f"web_{body.type.lower()}", body.priority).add("task", task)
+
+        def submit() -> str:
+            return system.engine.submit(graph).id
+
+        try:
+            return {"run": await on_runtime(submit)}
+        except TaskError as exc:
+            raise HTTPException(422, str(exc)) from None
+
+    @router.post("/scenarios")
+    async def run_scenario(body: ScenarioBody) -> dict[str, Any]:
+        if body.name not in system.handlers:
+            known = ", ".join(system.handlers.kinds())
+            raise HTTPException(422, f"unknown scenario '{body.name}' (known: {known})")
+        ident = f"web-{body.name}-{next(counter)}"
+        note = Notification(ident, body.user, body.name, body.priority, reason="dashboard")
+        await on_runtime(lambda: system.runtime.bus.publish(NOTIFICATIONS_TOPIC, note))
+        return {"id": ident}
+
+    @router.post("/chat")
+    async def chat(body: ChatBody) -> dict[str, Any]:
+        await on_runtime(lambda: gw.note_chat("web", body.text, body.lang))
+        reply = await asyncio.to_thread(backend.chat.reply, body.text, body.lang)
+        await on_runtime(lambda: gw.note_chat("robot", reply, body.lang))
+        return {"reply": reply, "lang": body.lang}
+
+    @router.get("/health/users")
+    async def health_users() -> dict[str, Any]:
+        return {"users": await on_runtime(env.health.users), "metrics": list(HEALTH_METRICS)}
+
+    @router.get("/health/{user}/{metric}")
+    async def health(
+        user: str = Path(pattern=NAME),
+        metric: str = Path(pattern=NAME),
+        days: int = Query(default=14, ge=1, le=366),
+    ) -> dict[str, Any]:
+        if metric not in HEALTH_METRICS:
+            raise HTTPException(422, f"metric must be one of {', '.join(HEALTH_METRICS)}")
+
+        def query() -> dict[str, Any]:
+            today = _today(system)
+            latest = env.health.latest(user, metric)
+            trend = env.health.trend(user, metric, today, days)
+            return {"latest": latest.to_dict() if latest else None, **trend.to_dict()}
+
+        return {"user": user, "metric": metric, **await on_runtime(query)}
+
+    @router.post("/devices")
+    async def device(body: DeviceBody) -> dict[str, Any]:
+        if body.state not in DEVICE_STATES[body.device]:
+            raise HTTPException(
+                422, f"{body.device} can be {' or '.join(DEVICE_STATES[body.device])}"
+            )
+        if body.room not in system.sim.world.home.rooms:
+            raise HTTPException(422, f"no room '{body.room}'")
+        cmd = DeviceCommand(env.config.home_id, body.room, body.device, body.state)
+        await on_runtime(lambda: system.runtime.bus.publish(DEVICE_COMMAND_TOPIC, cmd))
+        return {"sent": True}
+
+    @router.post("/sensors")
+    async def sensor(body: SensorBody) -> dict[str, Any]:
+        """Set a simulated sensor (the "raise the temperature" button of the demo)."""
+        try:
+            await on_runtime(lambda: system.sensors.set(body.room, body.sensor, body.value))
+        except ValueError as exc:
+            raise HTTPException(422, str(exc)) from None
+        return {"set": True}
+
+    @router.get("/notifications")
+    async def notifications(limit: int = Query(default=50, ge=1, le=500)) -> dict[str, Any]:
+        return {"notifications": await on_runtime(lambda: env.ledger.recent(limit))}
+
+    return router
+
+
+def _today(system: System) -> date:
+    clock = system.runtime.clock
+    return datetime.fromisoformat(clock.iso(clock.now())).date()

@@ -1,0 +1,128 @@
+"""The gateway between the web server's thread and the single-threaded runtime.
+
+On the runtime's thread, :class:`GatewayNode` keeps a JSON-ready snapshot of what the
+dashboard shows (robot, path, people, behaviours, transcript, sensors, devices) and runs
+the jobs the web posts.  The web thread only reads the last snapshot (an atomic reference
+swap) and posts jobs whose results come back through futures.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Callable
+from concurrent.futures import Future
+from typing import Any, TypeVar
+
+from amiro.behavior.engine import EVENTS_TOPIC
+from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.behavior.tasks.speech import HEARD_TOPIC
+from amiro.core.messages import (
+    Acknowledgement,
+    BehaviorEvent,
+    Path,
+    SensorReading,
+    SpeechHeard,
+    SpeechRequest,
+)
+from amiro.core.node import Node
+from amiro.dialogue.output import SAY_TOPIC
+from amiro.environment.inbox import Inbox
+from amiro.environment.messages import DeviceState
+from amiro.environment.topics import DEVICE_STATE_TOPIC, SENSORS_TOPIC
+from amiro.system import System
+
+PATH_TOPIC = "/amiro/navigation/path"
+T = TypeVar("T")
+
+
+class GatewayNode(Node):
+    def __init__(self, system: System, period_s: float = 0.1, history: int = 200) -> None:
+        super().__init__("web_gateway")
+        self.system = system
+        self.period_s = period_s
+        self.inbox = Inbox()
+        self.snapshot: dict[str, Any] = {}
+        self.transcript: deque[dict[str, Any]] = deque(maxlen=history)
+        self.events: deque[dict[str, Any]] = deque(maxlen=history)
+        self.acks: deque[dict[str, Any]] = deque(maxlen=history)
+        self.sensors: dict[str, dict[str, float]] = {}
+        self.devices: dict[str, dict[str, str]] = {}
+        self.path: list[tuple[float, float]] = []
+
+    def on_start(self) -> None:
+        self.create_subscription(SAY_TOPIC, SpeechRequest, self._on_say, 100)
+        self.create_subscription(HEARD_TOPIC, SpeechHeard, self._on_heard, 100)
+        self.create_subscription(PATH_TOPIC, Path, self._on_path, 10)
+        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, 1000)
+        self.create_subscription(ACK_TOPIC, Acknowledgement, self._on_ack, 1000)
+        self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, 1000)
+        self.create_subscription(DEVICE_STATE_TOPIC, DeviceState, self._on_device, 1000)
+        self.create_timer(self.period_s, self._tick)
+        self._tick()
+
+    # --- any thread -------------------------------------------------------------------------
+    def call(self, job: Callable[[], T]) -> Future[T]:
+        """Run ``job`` on the runtime's thread; its result (or exception) comes in the future."""
+        future: Future[T] = Future()
+
+        def run() -> None:
+            if not future.set_running_or_notify_cancel():
+                return
+            try:
+                future.set_result(job())
+            except Exception as exc:
+                future.set_exception(exc)
+
+        self.inbox.post(run)
+        return future
+
+    # --- runtime thread ---------------------------------------------------------------------
+    def note_chat(self, who: str, text: str, lang: str) -> None:
+        self.transcript.append({"t": round(self.now(), 2), "who": who, "text": text, "lang": lang})
+
+    def _on_say(self, msg: SpeechRequest) -> None:
+        self.note_chat("robot", msg.text, msg.lang)
+
+    def _on_heard(self, msg: SpeechHeard) -> None:
+        self.note_chat(msg.speaker or "someone", msg.text, msg.lang)
+
+    def _on_path(self, msg: Path) -> None:
+        self.path = [(round(p.x, 2), round(p.y, 2)) for p in msg.poses]
+
+    def _on_event(self, ev: BehaviorEvent) -> None:
+        self.events.append(ev.to_dict())
+
+    def _on_ack(self, ack: Acknowledgement) -> None:
+        self.acks.append({"id": ack.id, "status": ack.status, "ts": ack.ts})
+
+    def _on_reading(self, r: SensorReading) -> None:
+        self.sensors.setdefault(r.room, {})[r.sensor] = round(r.value, 2)
+
+    def _on_device(self, s: DeviceState) -> None:
+        self.devices.setdefault(s.room, {})[s.device] = s.state
+
+    def _tick(self) -> None:
+        self.inbox.drain()
+        self.snapshot = self._build()
+
+    def _build(self) -> dict[str, Any]:
+        sim, engine = self.system.sim, self.system.engine
+        pose = sim.robot.true_pose
+        return {
+            "t": round(self.now(), 2),
+            "clock": self.runtime.clock.iso(self.now()),
+            "robot": {"x": round(pose.x, 3), "y": round(pose.y, 3), "theta": round(pose.theta, 3)},
+            "path": self.path,
+            "people": [
+                {"name": r.name, "x": round(r.x, 2), "y": round(r.y, 2), "activity": r.activity}
+                for r in sim.residents.residents.values()
+                if r.present
+            ],
+            "current": engine.current(),
+            "queue": engine.queue_snapshot(),
+            "transcript": list(self.transcript)[-30:],
+            "events": list(self.events)[-30:],
+            "acks": list(self.acks)[-20:],
+            "sensors": {room: dict(values) for room, values in self.sensors.items()},
+            "devices": {room: dict(states) for room, states in self.devices.items()},
+        }

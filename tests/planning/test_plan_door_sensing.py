@@ -1,0 +1,45 @@
+"""Doors seen open or closed by the simulated lidar, and a helper opening one."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from amiro.behavior.planning.door_sensing import door_state_from_scan
+from amiro.behavior.planning.knowledge import DoorState
+from amiro.core.messages import Pose2D
+from amiro.sim.door_help import open_nearest_door
+from amiro.sim.lidar import Lidar, LidarParams
+from amiro.sim.residents import Resident
+from amiro.sim.world import World, default_home_path
+
+LIVING_DOOR = ((4.5, 3.5), (5.4, 3.5))
+IN_HALLWAY = Pose2D(3.5, 4.2, 0.0)
+
+
+def state(world: World, pose: Pose2D) -> DoorState | None:
+    scan = Lidar(LidarParams()).scan(world.live, pose, 0.0, np.random.default_rng(0))
+    return door_state_from_scan(scan, pose, *LIVING_DOOR)
+
+
+def test_lidar_tells_an_open_door_from_a_closed_one() -> None:
+    world = World.load(default_home_path())
+    assert state(world, IN_HALLWAY) is DoorState.OPEN
+    world.set_door("living_door", False)
+    assert state(world, IN_HALLWAY) is DoorState.CLOSED
+
+
+def test_a_door_behind_a_wall_is_not_seen() -> None:
+    world = World.load(default_home_path())
+    world.set_door("living_door", False)
+    assert state(world, Pose2D(0.8, 1.0, 0.0)) is None  # the dock: the hallway wall hides it
+
+
+def test_helper_opens_the_closed_door_nearest_to_them() -> None:
+    world = World.load(default_home_path())
+    world.set_door("living_door", False)
+    world.set_door("bedroom_door", False)
+    john = Resident("john", 4.0, 4.4)
+    assert open_nearest_door(world, john) == "living_door"
+    assert world.doors["living_door"] and not world.doors["bedroom_door"]
+    assert open_nearest_door(world, john) == "bedroom_door"
+    assert open_nearest_door(world, john) is None

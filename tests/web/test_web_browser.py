@@ -1,0 +1,83 @@
+"""In Debian's headless chromium (Playwright): sign in, watch the robot move on the map,
+trigger a scenario, send a chat message and read the reply."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from playwright.sync_api import Page, expect, sync_playwright
+from web_served import PASSWORD, Running, start_served
+
+from amiro.web.server import WebServer
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+
+
+@pytest.fixture
+def site() -> Iterator[tuple[Running, str]]:
+    running = start_served(speed=10.0)
+    server = WebServer(running.served.app, "127.0.0.1", 0)
+    server.start()
+    yield running, server.url
+    server.stop()
+    running.loop.stop()
+    running.served.stop()
+
+
+@pytest.fixture
+def page(tmp_path: Path) -> Iterator[Page]:
+    with sync_playwright() as pw:
+        context = pw.chromium.launch_persistent_context(
+            str(tmp_path / "profile"), executable_path=CHROMIUM, headless=True, args=FLAGS
+        )
+        yield context.new_page()
+        context.close()
+
+
+def robot_pose(page: Page) -> str:
+    return str(page.locator("#robot-pose").text_content())
+
+
+def test_dashboard_in_a_real_browser(site: tuple[Running, str], page: Page) -> None:
+    running, url = site
+    page.goto(url + "/")
+    page.wait_for_url("**/login")
+    page.fill("#password", "wrong")
+    page.click("#login-button")
+    expect(page.locator("#login-error")).to_contain_text("Wrong")
+    page.fill("#password", PASSWORD)
+    page.click("#login-button")
+    page.wait_for_url(url + "/")
+    expect(page.locator("#robot-pose")).to_contain_text("x ")
+    start = robot_pose(page)
+
+    page.click("#scenario-hydration")
+    expect(page.locator("#action-result")).to_contain_text("Scenario hydration started")
+    expect(page.locator("#current-task")).to_contain_text("hydration", timeout=15_000)
+    page.wait_for_function(
+        "start => document.querySelector('#robot-pose').textContent !== start",
+        arg=start,
+        polling=200,
+        timeout=20_000,
+    )
+    assert robot_pose(page) != start  # the map follows the robot
+
+    page.select_option("#chat-lang", "fr")
+    page.fill("#chat-input", "Bonjour robot")
+    page.click("#chat-send")
+    expect(page.locator("#chat-reply")).to_contain_text("module de dialogue")
+    expect(page.locator("#transcript")).to_contain_text("Bonjour robot")
+    assert any(r.name == "hydration" for r in running.served.system.engine.runs.values())
