@@ -31,11 +31,14 @@ def build_parser() -> argparse.ArgumentParser:
     import amiro.activity.cli as activity_cli
     import amiro.behavior.planning.cli as planning_cli
     import amiro.dialogue.cli as dialogue_cli
+    import amiro.environment.cli as environment_cli
     import amiro.evaluation.bench_cli as bench_cli
+    import amiro.navigation.cli as navigation_cli
     import amiro.perception.cli as perception_cli
     import amiro.recording.cli as recording_cli
     import amiro.ros2.cli as ros2_cli
     import amiro.scenarios.cli as scenarios_cli
+    import amiro.serve as serve_cli
 
     parser = _Parser(
         prog="amiro",
@@ -45,9 +48,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging on stderr")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     scenarios_cli.register(sub)
+    serve_cli.register(sub)
+    navigation_cli.register(sub)
     perception_cli.register(sub)
     activity_cli.register(sub)
     dialogue_cli.register(sub)
+    environment_cli.register(sub)
     planning_cli.register(sub)
     ros2_cli.register(sub)
     recording_cli.register(sub)

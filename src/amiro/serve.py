@@ -23,7 +23,7 @@ from pydantic import SecretStr
 from amiro.core.clock import Clock, SimClock
 from amiro.core.config import ConfigError, parse, read_yaml
 from amiro.core.runtime import Runtime
-from amiro.environment.assembly import Environment, add_environment
+from amiro.environment.assembly import Environment
 from amiro.environment.config import EnvironmentConfig
 from amiro.environment.mqtt_bridge import MqttConfig, parse_url
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
@@ -126,8 +126,7 @@ class Served:
 def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Served:
     """The system, the environment's nodes, the gateway and the app (nothing started)."""
     system = build_system(cfg.system, clock)
-    rooms = list(system.sim.world.home.rooms)
-    env = add_environment(system.runtime, rooms, cfg.environment, system.sensors, system.rules)
+    env = system.environment
     gateway = system.runtime.add(GatewayNode(system))
     backend = Backend(system, env, gateway, chat or UnavailableChat())
     app = create_app(backend, make_authenticator(cfg.web), cfg.web)

@@ -28,8 +28,10 @@ from amiro.core.runtime import Runtime
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.profiles import SpeakerProfile
 from amiro.dialogue.stack import Dialogue, build_dialogue
-from amiro.environment.rules import RulesNode, ThresholdRule
-from amiro.environment.simulated import SimulatedSensorsConfig, SimulatedSensorsNode
+from amiro.environment.assembly import Environment, add_environment
+from amiro.environment.config import EnvironmentConfig
+from amiro.environment.rules import RulesNode
+from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MoveToNode
 from amiro.navigation.stack import build_navigation
@@ -44,17 +46,6 @@ SHIPPED_BEHAVIORS = ("hydration", "fall", "go_to")
 
 def shipped_behavior(name: str) -> Path:
     return Path(str(resources.files("amiro").joinpath(f"data/behaviors/{name}.yaml")))
-
-
-HOT_ROOM = ThresholdRule(
-    name="hot_room", sensor="temperature", above=28.0, kind="hydration", priority=5
-)
-
-
-class EnvironmentConfig(Section):
-    home_id: str = "home"
-    sensors: SimulatedSensorsConfig = Field(default_factory=SimulatedSensorsConfig)
-    rules: tuple[ThresholdRule, ...] = (HOT_ROOM,)
 
 
 class BehaviorConfig(Section):
@@ -87,12 +78,14 @@ class System:
     sensors: SimulatedSensorsNode
     rules: RulesNode
     dialogue: Dialogue
+    environment: Environment
 
     def start(self) -> None:
         self.runtime.start()
 
     def stop(self) -> None:
         self.runtime.stop()
+        self.environment.close()
 
 
 def nav_map_path(cfg: SystemConfig) -> Path:
@@ -107,6 +100,7 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     sim = build_sim(runtime, cfg.sim)
     world = sim.world
     places = {name: world.place(name) for name in world.home.places}
+    rooms = list(world.home.rooms)
     navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
 
     rng_perception, rng_activity = runtime.rng.spawn(2)
@@ -145,11 +139,20 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
     notifications = runtime.add(NotificationHandlerNode(engine, handlers, profiles))
     sensors = runtime.add(
-        SimulatedSensorsNode(
-            list(world.home.rooms), cfg.environment.sensors, cfg.environment.home_id
-        )
+        SimulatedSensorsNode(rooms, cfg.environment.sensors, cfg.environment.home_id)
     )
     rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
+    environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     return System(
-        cfg, runtime, sim, navigation, engine, handlers, notifications, sensors, rules, dialogue
+        cfg,
+        runtime,
+        sim,
+        navigation,
+        engine,
+        handlers,
+        notifications,
+        sensors,
+        rules,
+        dialogue,
+        environment,
     )

@@ -2,6 +2,7 @@
 
 from typing import Any
 
+import amiro.behavior.tasks  # noqa: F401 - registers the task types
 from amiro.activity.fall import FallMonitorNode
 from amiro.activity.ports import ActivityReading
 from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, EngineConfig
@@ -13,7 +14,7 @@ from amiro.core.runtime import Runtime
 
 
 class ScriptedRecognizer:
-    box_range = None
+    box_range: tuple[float, float] | None = None
 
     def __init__(self) -> None:
         self.labels: dict[str, str] = {}
@@ -71,7 +72,7 @@ def test_a_confirmed_fall_preempts_the_chore_once_and_the_chore_resumes() -> Non
     recognizer.labels.clear()
     runtime.spin_until(lambda: chore.done, 30.0)
     assert fall.outcome == "completed" and chore.outcome == "completed"
-    assert [r.result for r in chore.records][0] == "preempted"
+    assert chore.records[0].result == "preempted"
     assert monitor.alerts == ["maria"]
 
 

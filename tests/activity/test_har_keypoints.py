@@ -34,7 +34,9 @@ def test_openpose_joints_land_on_their_ntu_places() -> None:
     direct = [J[n] for n in ("SpineBase", "SpineShoulder", "Head", "ElbowLeft", "KneeRight")]
     np.testing.assert_allclose(mapped[:, direct], ntu[:, direct])
     np.testing.assert_allclose(mapped[:, J["FootLeft"]], ntu[:, J["FootLeft"]])
-    spine_mid = ntu[:, J["SpineBase"]] + 0.56 * (ntu[:, J["SpineShoulder"]] - ntu[:, J["SpineBase"]])
+    spine_mid = ntu[:, J["SpineBase"]] + 0.56 * (
+        ntu[:, J["SpineShoulder"]] - ntu[:, J["SpineBase"]]
+    )
     np.testing.assert_allclose(mapped[:, J["SpineMid"]], spine_mid)
     # the hand continues the forearm beyond the wrist
     forearm = ntu[:, J["WristRight"]] - ntu[:, J["ElbowRight"]]

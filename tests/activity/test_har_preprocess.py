@@ -7,7 +7,9 @@ from amiro.activity.skeleton import PARENT, SEGMENT_LENGTH, J
 
 def _bone_lengths(frames: np.ndarray) -> np.ndarray:
     children = list(range(1, 25))
-    return np.linalg.norm(frames[:, children] - frames[:, [PARENT[j] for j in children]], axis=-1)
+    bones = frames[:, children] - frames[:, [PARENT[j] for j in children]]
+    lengths: np.ndarray = np.linalg.norm(bones, axis=-1)
+    return lengths
 
 
 def test_bones_get_the_standard_lengths_and_keep_directions() -> None:

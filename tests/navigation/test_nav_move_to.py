@@ -17,10 +17,10 @@ from amiro.core.gridmap import GridMap, load_map
 from amiro.core.messages import Path, Point, Pose2D, String, Twist
 from amiro.core.runtime import Runtime
 from amiro.navigation.config import NavigationConfig
-from amiro.sim.geometry import wrap_angle as wrap
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToNode
 from amiro.navigation.stack import GROUND_TRUTH_TOPIC, build_navigation
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
+from amiro.sim.geometry import wrap_angle as wrap
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.world import default_home_path
 

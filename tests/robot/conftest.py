@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import itertools
 import os
+from collections.abc import Iterator
 
 import pytest
+import qi
+from naoqi_fakes import FakeMotion, FakePosture, FakeTablet, FakeTTS, Recorder
 
 _domains = itertools.count(30 + os.getpid() % 25)
 
@@ -13,3 +16,21 @@ _domains = itertools.count(30 + os.getpid() % 25)
 @pytest.fixture
 def robot_domain() -> int:
     return next(_domains)
+
+
+@pytest.fixture
+def fake_pepper() -> Iterator[tuple[str, Recorder]]:
+    """NAOqi's services on 127.0.0.1 (a free port), as a robot would offer them."""
+    rec = Recorder()
+    server = qi.Session()
+    server.listenStandalone("tcp://127.0.0.1:0")
+    services = {
+        "ALTextToSpeech": FakeTTS(rec),
+        "ALTabletService": FakeTablet(rec),
+        "ALMotion": FakeMotion(rec),
+        "ALRobotPosture": FakePosture(rec),
+    }
+    for name, obj in services.items():
+        server.registerService(name, obj)
+    yield server.endpoints()[0], rec
+    server.close()

@@ -97,6 +97,7 @@ async def fuzz(app: FastAPI, n: int, rng: np.random.Generator) -> dict[int, int]
     return statuses
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("running", [1.0], indirect=True)  # a calm home: the server is measured
 def test_ten_thousand_fuzzed_requests(running: Running) -> None:
     app = running.served.app

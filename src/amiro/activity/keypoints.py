@@ -136,6 +136,8 @@ def to_ntu(keypoints: FloatArray, fmt: str, min_confidence: float = 0.3) -> Floa
             points = [p for p, _ in recipe]
             usable = todo & ok[:, points].all(axis=1)
             weights = np.array([w for _, w in recipe])
-            out[usable, J[joint]] = np.einsum("k,tkc->tc", weights, keypoints[usable][:, points, :2])
+            out[usable, J[joint]] = np.einsum(
+                "k,tkc->tc", weights, keypoints[usable][:, points, :2]
+            )
             todo &= ~usable
     return out

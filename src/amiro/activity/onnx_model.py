@@ -13,7 +13,7 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
-import onnxruntime as ort  # type: ignore[import-untyped]
+import onnxruntime as ort
 
 from amiro.activity.normalize import ViewFrame, features, normalize_bones, preprocess_batch
 from amiro.activity.skeleton import FloatArray

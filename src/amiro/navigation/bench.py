@@ -58,7 +58,7 @@ def run_bench(rng: np.random.Generator) -> dict[str, Any]:
 
     pf = ParticleFilter(LikelihoodField(grid), rng, AmclParams(max_particles=500))
     pf.init_pose(pose)
-    amcl_ms = _median_ms(lambda: (pf.init_pose(pose), pf.correct(scan)), 20)
+    amcl_ms = _median_ms(lambda: pf.correct(scan), 20)
     return {
         "astar_1000x1000_ms": astar_ms,
         "dwa_cycle_ms": dwa_ms,

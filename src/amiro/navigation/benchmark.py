@@ -50,7 +50,7 @@ def run_benchmark(grid: GridMap, trials: int, rng: np.random.Generator) -> dict[
     dwa = DynamicWindow(costmap, DwaParams(max_speed=cfg.max_speed, max_turn=cfg.max_turn))
     is_free = _free_test(grid)
     free_cells = np.argwhere(costmap.clearance > costmap.inscribed + 0.1)
-    results = []
+    results: list[dict[str, Any]] = []
     while len(results) < trials:
         a, b = free_cells[rng.integers(0, len(free_cells), 2)]
         start = Pose2D(

@@ -88,4 +88,5 @@ def flaser_line(stamp: float, ranges: FloatArray, reference: Pose2D, odom: Pose2
 
 
 def odom_line(stamp: float, odom: Pose2D, tv: float, rv: float) -> str:
-    return f"ODOM {odom.x:.5f} {odom.y:.5f} {odom.theta:.5f} {tv:.3f} {rv:.3f} 0 {stamp:.3f} amiro-sim {stamp:.3f}"
+    pose = f"{odom.x:.5f} {odom.y:.5f} {odom.theta:.5f}"
+    return f"ODOM {pose} {tv:.3f} {rv:.3f} 0 {stamp:.3f} amiro-sim {stamp:.3f}"

@@ -7,6 +7,7 @@ Seeded, so the shipped maps can be regenerated exactly.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 
 import numpy as np
@@ -113,7 +114,7 @@ def _rooms_along(
     ]
     for axis, lo, hi, door_at, (a0, a1) in bands:
         cuts = split(a0, a1)
-        for c0, c1 in zip(cuts[:-1], cuts[1:], strict=True):
+        for c0, c1 in itertools.pairwise(cuts):
             if axis == "x":
                 wall_y(c1, lo, hi)
             else:

@@ -24,12 +24,12 @@ class LogOddsGrid:
 
     def __init__(
         self, width_m: float, height_m: float, resolution: float, origin: tuple[float, float]
-    ):
+    ) -> None:
         self.resolution = resolution
         self.origin = origin
-        self.logodds = np.zeros(
-            (round(height_m / resolution), round(width_m / resolution)), np.float32
-        )
+        shape = (round(height_m / resolution), round(width_m / resolution))
+        self.logodds = np.zeros(shape, np.float32)
+        self.prob = np.full(shape, 0.5, np.float32)  # kept in step with the log-odds
 
     def _cells(
         self, xs: FloatArray, ys: FloatArray
@@ -59,9 +59,8 @@ class LogOddsGrid:
         free = np.setdiff1d(free, occ, assume_unique=True)
         flat[free] = np.maximum(flat[free] + L_FREE, -L_CLAMP)
         flat[occ] = np.minimum(flat[occ] + L_OCC, L_CLAMP)
-
-    def probability(self) -> npt.NDArray[np.float32]:
-        return np.asarray(1.0 - 1.0 / (1.0 + np.exp(self.logodds)), dtype=np.float32)
+        changed = np.concatenate((free, occ))
+        self.prob.reshape(-1)[changed] = 1.0 - 1.0 / (1.0 + np.exp(flat[changed]))
 
     def to_gridmap(self) -> GridMap:
         data = np.full(self.logodds.shape, UNKNOWN, dtype=np.int8)

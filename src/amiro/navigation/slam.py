@@ -92,7 +92,7 @@ class HectorSlam:
         xi = np.array([guess.x, guess.y, guess.theta])
         prior = xi.copy()
         for grid in reversed(self.levels):
-            prob = grid.probability()
+            prob = grid.prob
             weight = self.params.odom_weight * grid.resolution if use_prior else 0.0
             for _ in range(self.params.iterations):
                 step = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)

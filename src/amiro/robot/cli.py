@@ -73,6 +73,8 @@ def _run(args: argparse.Namespace) -> int:
 
     if args.duration <= 0:
         raise ConfigError(f"--duration must be positive, got {args.duration:g}")
+    if args.adapter == "naoqi" and args.url is None:
+        raise ConfigError("--adapter naoqi needs --url tcp://HOST:9559")
     data: dict[str, Any] = {"adapter": args.adapter, "profile": args.profile}
     if args.domain_id is not None:
         data["ros"] = {"domain_id": args.domain_id}

@@ -338,14 +338,26 @@ def ros_camera_info(types: MsgTypes, info: CameraInfo, now: float) -> Any:
         k=np.asarray(k, dtype=np.float64),
         r=np.eye(3).ravel(),
         p=np.asarray([k[0], k[1], k[2], 0.0, k[3], k[4], k[5], 0.0, 0.0, 0.0, 1.0, 0.0]),
+        binning_x=0,
+        binning_y=0,
+        roi=types.make(
+            "sensor_msgs/msg/RegionOfInterest",
+            x_offset=0,
+            y_offset=0,
+            height=0,
+            width=0,
+            do_rectify=False,
+        ),
     )
 
 
 def bus_camera_info(msg: Any) -> CameraInfo:
-    k = tuple(float(v) for v in msg.k)
-    if len(k) != 9:
+    values = [float(v) for v in msg.k]
+    if len(values) != 9:
         raise ValueError("CameraInfo.k must have 9 values")
-    return CameraInfo(bus_header(msg.header), int(msg.width), int(msg.height), k)  # type: ignore[arg-type]
+    k0, k1, k2, k3, k4, k5, k6, k7, k8 = values
+    k = (k0, k1, k2, k3, k4, k5, k6, k7, k8)
+    return CameraInfo(bus_header(msg.header), int(msg.width), int(msg.height), k)
 
 
 # --- strings and JSON-carrying messages --------------------------------------------------

@@ -12,7 +12,7 @@ import math
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
 from amiro.behavior.tasks.gaze import look_at
-from amiro.core.messages import Point, Twist
+from amiro.core.messages import Point, Pose2D, Twist
 
 CMD_VEL = "/cmd_vel"
 
@@ -46,7 +46,8 @@ class RecognizeActivity(Task):
         self.complete_seen = False
         self.labels: dict[str, int] = {}
         self.direction = 0  # +1 forwards, -1 backwards, 0 still
-        self.moved = 0.0
+        self.commanded = 0.0  # m of reframing driven so far (the budget counts this)
+        self.start_pose = self._pose(ctx)
         self.last_tick = ctx.now()
         self.target = p.get("look_at") if isinstance(p.get("look_at"), Point) else None
         if self.target is not None:
@@ -67,7 +68,7 @@ class RecognizeActivity(Task):
                 self.detail = {
                     "activity": self.activity,
                     "confidence": round(reading.confidence, 3),
-                    "reframed_m": round(self.moved, 2),
+                    "reframed_m": self._reframed(ctx),
                 }
                 ctx.event("activity_recognised", activity=self.activity, person=self.person)
                 return TaskStatus.SUCCESS
@@ -81,7 +82,7 @@ class RecognizeActivity(Task):
             self.detail = {
                 "reason": reason,
                 "seen": self.labels,
-                "reframed_m": round(self.moved, 2),
+                "reframed_m": self._reframed(ctx),
             }
             return TaskStatus.FAILURE
         return TaskStatus.RUNNING
@@ -93,14 +94,27 @@ class RecognizeActivity(Task):
     def _framing_direction(self, ctx: TaskContext, box: float | None, clipped: bool) -> int:
         """Backwards when the box is too big or cut, forwards when too small, else still."""
         box_range = getattr(ctx.module("activity"), "box_range", None)
-        if not self.reframe or box_range is None or box is None or self.moved >= self.budget:
+        if not self.reframe or box_range is None or box is None or self.commanded >= self.budget:
             return 0
         low, high = box_range
         want = -1 if (clipped or box > high) else (1 if box < low else 0)
         return want if want != 0 and self._free_ahead(ctx, want) else 0
 
+    @staticmethod
+    def _pose(ctx: TaskContext) -> Pose2D | None:
+        navigation = ctx.modules.get("navigation")
+        pose: Pose2D | None = getattr(navigation, "pose", None)
+        return pose
+
+    def _reframed(self, ctx: TaskContext) -> float:
+        """How far the base actually went while reframing (0 when blocked)."""
+        pose = self._pose(ctx)
+        if pose is None or self.start_pose is None:
+            return 0.0
+        return round(pose.distance_to(self.start_pose), 2)
+
     def _free_ahead(self, ctx: TaskContext, direction: int, look: float = 0.3) -> bool:
-        pose = ctx.module("navigation").pose
+        pose = self._pose(ctx)
         world = ctx.modules.get("world")
         if pose is None or world is None:
             return False
@@ -112,8 +126,8 @@ class RecognizeActivity(Task):
         dt, self.last_tick = now - self.last_tick, now
         if self.direction == 0:
             return
-        self.moved += self.speed * dt
-        if self.moved >= self.budget:
+        self.commanded += self.speed * dt
+        if self.commanded >= self.budget:
             self._stop(ctx)
             return
         ctx.bus.publish(CMD_VEL, Twist.planar(self.direction * self.speed, 0.0, 0.0))
