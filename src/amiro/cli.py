@@ -36,6 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     import amiro.navigation.cli as navigation_cli
     import amiro.perception.cli as perception_cli
     import amiro.recording.cli as recording_cli
+    import amiro.robot.cli as robot_cli
     import amiro.ros2.cli as ros2_cli
     import amiro.scenarios.cli as scenarios_cli
     import amiro.serve as serve_cli
@@ -56,6 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
     environment_cli.register(sub)
     planning_cli.register(sub)
     ros2_cli.register(sub)
+    robot_cli.register(sub)
     recording_cli.register(sub)
     bench_cli.register(sub)
     return parser

@@ -1,8 +1,7 @@
 """``amiro serve``: the whole system with the dashboard and, when configured, the MQTT bridge.
 
-The config file is a system config (``sim``, ``navigation``, ...) whose ``environment``
-section may use the smart-environment keys (database, MQTT, reminders, health rules), plus
-a ``web`` section.  Without a file, the simulated apartment with Maria on the couch.
+The config file is a system config (``sim``, ``navigation``, ``environment``, ...) plus a
+``web`` section.  Without a file, the simulated apartment with Maria on the couch.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ from pydantic import SecretStr
 from amiro.core.clock import Clock, SimClock
 from amiro.core.config import ConfigError, parse, read_yaml
 from amiro.core.runtime import Runtime
-from amiro.environment.assembly import Environment
 from amiro.environment.config import EnvironmentConfig
 from amiro.environment.mqtt_bridge import MqttConfig, parse_url
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
@@ -31,18 +29,15 @@ from amiro.system import System, SystemConfig, build_system
 from amiro.web.api import Backend
 from amiro.web.app import create_app
 from amiro.web.auth import Authenticator, hash_password
-from amiro.web.chat import ChatPort, UnavailableChat
+from amiro.web.chat import ChatPort, DialogueChat
 from amiro.web.config import WebConfig
 from amiro.web.gateway import GatewayNode
 from amiro.web.server import WebServer
-
-LEGACY_ENV_KEYS = {"home_id", "sensors", "rules"}
 
 
 @dataclass(frozen=True)
 class ServeConfig:
     system: SystemConfig
-    environment: EnvironmentConfig
     web: WebConfig
 
 
@@ -59,15 +54,12 @@ def load_serve_config(path: str | None, seed: int = 1) -> ServeConfig:
         data = dict(raw or {})
     source = path or "<defaults>"
     web = parse(WebConfig, data.pop("web", None), f"{source}: web")
-    env = parse(EnvironmentConfig, data.get("environment"), f"{source}: environment")
-    # system.py's environment section knows the first three keys; the rest are read here
-    data["environment"] = env.model_dump(mode="json", include=LEGACY_ENV_KEYS)
-    system = parse(SystemConfig, data, source)
-    return ServeConfig(system, env, web)
+    return ServeConfig(parse(SystemConfig, data, source), web)
 
 
-def _apply_args(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
-    env, web = cfg.environment, cfg.web
+def apply_flags(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
+    """``--mqtt``, ``--home`` and ``--db`` override the system's environment section."""
+    env = cfg.system.environment
     if args.mqtt is not None:
         parse_url(args.mqtt)
         mqtt = (
@@ -81,11 +73,8 @@ def _apply_args(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
     if args.db is not None:
         env = env.model_copy(update={"database": args.db})
     updates = {k: v for k, v in (("host", args.host), ("port", args.port)) if v is not None}
-    web = web.model_copy(update=updates)
-    system = cfg.system.model_copy(
-        update={"environment": cfg.system.environment.model_copy(update={"home_id": env.home_id})}
-    )
-    return ServeConfig(system, env, web)
+    system = cfg.system.model_copy(update={"environment": env})
+    return ServeConfig(system, cfg.web.model_copy(update=updates))
 
 
 def make_authenticator(web: WebConfig) -> Authenticator:
@@ -110,7 +99,6 @@ def _secret_env(name: str) -> SecretStr | None:
 @dataclass
 class Served:
     system: System
-    environment: Environment
     gateway: GatewayNode
     app: FastAPI
 
@@ -120,17 +108,17 @@ class Served:
 
     def stop(self) -> None:
         self.system.stop()
-        self.environment.close()
 
 
 def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Served:
-    """The system, the environment's nodes, the gateway and the app (nothing started)."""
+    """The system, the gateway and the app (nothing started); the chat box talks to the
+    system's dialogue manager unless another ``chat`` is given."""
     system = build_system(cfg.system, clock)
-    env = system.environment
     gateway = system.runtime.add(GatewayNode(system))
-    backend = Backend(system, env, gateway, chat or UnavailableChat())
+    chat = chat or DialogueChat(system.dialogue.manager)
+    backend = Backend(system, system.environment, gateway, chat)
     app = create_app(backend, make_authenticator(cfg.web), cfg.web)
-    return Served(system, env, gateway, app)
+    return Served(system, gateway, app)
 
 
 class RuntimeLoop:
@@ -178,7 +166,7 @@ def _serve(args: argparse.Namespace) -> int:
         raise ConfigError(f"--speed must be positive, got {args.speed}")
     if args.port is not None and not 0 <= args.port <= 65535:
         raise ConfigError(f"--port must be in 0..65535, got {args.port}")
-    cfg = _apply_args(load_serve_config(args.config, args.seed), args)
+    cfg = apply_flags(load_serve_config(args.config, args.seed), args)
     served = assemble(cfg, SimClock(speed=args.speed))
     server = WebServer(served.app, cfg.web.host, cfg.web.port)
     try:

@@ -30,6 +30,7 @@ from amiro.dialogue.profiles import SpeakerProfile
 from amiro.dialogue.stack import Dialogue, build_dialogue
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.config import EnvironmentConfig
+from amiro.environment.dialogue_sources import environment_sources
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.navigation.config import NavigationConfig
@@ -37,6 +38,7 @@ from amiro.navigation.move_to import MoveToNode
 from amiro.navigation.stack import build_navigation
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.stack import build_people_finder
+from amiro.robot.config import RobotConfig
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.world import default_home_path
@@ -64,6 +66,7 @@ class SystemConfig(Section):
     dialogue: DialogueConfig = Field(default_factory=DialogueConfig)
     environment: EnvironmentConfig = Field(default_factory=EnvironmentConfig)
     behavior: BehaviorConfig = Field(default_factory=BehaviorConfig)
+    robot: RobotConfig = Field(default_factory=RobotConfig)
 
 
 @dataclass
@@ -96,6 +99,12 @@ def nav_map_path(cfg: SystemConfig) -> Path:
 
 def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     """Everything in one runtime, seeded by ``cfg.seed``."""
+    if cfg.robot.adapter != "sim":
+        raise ConfigError(
+            f"robot.adapter: {cfg.robot.adapter}: the whole stack runs on the simulated home "
+            "only so far (perception and activity read the simulator); drive a real robot "
+            "with `amiro robot run` or the split deployment (`amiro launch`)"
+        )
     runtime = Runtime(clock or SimClock(), seed=cfg.seed)
     sim = build_sim(runtime, cfg.sim)
     world = sim.world
@@ -115,7 +124,13 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
         """Dialogue requests (``go_to``) become behaviours."""
         return engine.submit(handlers.build(kind, payload))
 
-    dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=submit)
+    sensors = runtime.add(
+        SimulatedSensorsNode(rooms, cfg.environment.sensors, cfg.environment.home_id)
+    )
+    rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
+    environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
+    sources = environment_sources(runtime, environment, rooms)
+    dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=submit, sources=sources)
     activity = build_activity_recognizer(sim, rng_activity, cfg.activity)
     modules.update(
         {
@@ -138,11 +153,6 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
 
     profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
     notifications = runtime.add(NotificationHandlerNode(engine, handlers, profiles))
-    sensors = runtime.add(
-        SimulatedSensorsNode(rooms, cfg.environment.sensors, cfg.environment.home_id)
-    )
-    rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
-    environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     return System(
         cfg,
         runtime,

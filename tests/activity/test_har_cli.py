@@ -71,7 +71,9 @@ def test_evaluate_on_ntu_files_and_bench_give_the_contract_keys(
     empty = tmp_path / "empty"
     empty.mkdir()
     assert _run(capsys, "evaluate", "--ntu", str(empty), "--model", model)[0] == 2
-    code, out, _ = _run(capsys, "bench", "--model", model, "--iterations", "1", "--json")
+    code, out, _ = _run(
+        capsys, "bench", "--model", model, "--iterations", "1", "--repeats", "1", "--json"
+    )
     report = json.loads(out)
     assert code == 0 and set(report["lengths"]) == {"5", "10", "15", "20", "25", "30", "60"}
     assert report["stream_ms_per_frame"] > 0

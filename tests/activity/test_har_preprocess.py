@@ -1,6 +1,6 @@
 import numpy as np
 
-from amiro.activity.motion import ACTIONS, IDLE, Body, View, perform, to_camera
+from amiro.activity.motion import ACTIONS, FPS, IDLE, Body, View, perform, to_camera
 from amiro.activity.normalize import normalize_bones, preprocess
 from amiro.activity.skeleton import PARENT, SEGMENT_LENGTH, J
 
@@ -71,3 +71,26 @@ def test_same_seed_same_motion() -> None:
 
     np.testing.assert_array_equal(make(5), make(5))
     assert make(5).shape != make(6).shape or not np.allclose(make(5), make(6))
+
+
+def _drink_and_sneeze_cues(action: str, rng: np.random.Generator) -> tuple[float, float, float]:
+    """(s with a hand at the face, how far the head tips back, peak forward head speed)."""
+    frames = perform(action, Body.random(rng), rng)
+    head = frames[:, J["Head"]]
+    near = np.minimum(
+        np.linalg.norm(frames[:, J["HandLeft"]] - head, axis=1),
+        np.linalg.norm(frames[:, J["HandRight"]] - head, axis=1),
+    )
+    behind_neck = head[:, 2] - frames[:, J["Neck"], 2]  # body frame: z points behind
+    forward_speed = float((-np.diff(head[:, 2]) * FPS).max())
+    return float((near < 0.25).sum() / FPS), float(behind_neck.max() - behind_neck[0]), forward_speed
+
+
+def test_drinking_holds_the_cup_head_back_and_sneezing_jerks_forward_briefly() -> None:
+    rng = np.random.default_rng(7)
+    drink = np.array([_drink_and_sneeze_cues("drink_water", rng) for _ in range(10)])
+    sneeze = np.array([_drink_and_sneeze_cues("sneeze_cough", rng) for _ in range(10)])
+    assert np.median(drink[:, 0]) > 1.5 > np.median(sneeze[:, 0])
+    assert drink[:, 1].min() > 0.03 > sneeze[:, 1].max()
+    assert sneeze[:, 2].min() > 1.2 > drink[:, 2].max()
+    assert np.ptp(drink[:, 0]) > 0.5 and np.ptp(sneeze[:, 2]) > 1.0  # varied, not one template

@@ -6,7 +6,6 @@ import pytest
 
 from amiro.dialogue.audio_loop import AudioLoopUnderstanding
 from amiro.dialogue.config import AsrConfig, DialogueConfig
-from amiro.dialogue.stack import build_dialogue
 from amiro.dialogue.understanding import Nlu
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.scenarios.recorder import EventRecorder
@@ -14,9 +13,9 @@ from amiro.system import System, build_system
 
 
 def _run(lang: str, cfg: DialogueConfig, branch: str | None = None) -> tuple[System, str]:
-    system = build_system(scenario_config(HydrationOptions(lang=lang, branch=branch)))
-    dialogue = build_dialogue(system.runtime, cfg)
-    system.engine.modules["nlu"] = dialogue.nlu
+    scenario = scenario_config(HydrationOptions(lang=lang, branch=branch))
+    system = build_system(scenario.model_copy(update={"dialogue": cfg}))
+    dialogue = system.dialogue
     recorder = EventRecorder(system.runtime)
 
     def finished() -> bool:

@@ -8,8 +8,6 @@ from collections.abc import Callable
 
 from env_broker import Peer, wait_for
 
-from amiro.environment.assembly import add_environment
-from amiro.environment.config import EnvironmentConfig
 from amiro.environment.mqtt_bridge import MqttConfig
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import build_system
@@ -20,14 +18,10 @@ def test_hot_reading_over_mqtt_runs_hydration_and_acks_over_mqtt(
 ) -> None:
     base = scenario_config(HydrationOptions(seed=3))
     sensors = base.environment.sensors.model_copy(update={"changes": ()})
-    cfg = base.model_copy(
-        update={"environment": base.environment.model_copy(update={"sensors": sensors})}
-    )
-    system = build_system(cfg)
-    env_cfg = EnvironmentConfig(mqtt=MqttConfig(url=broker, client_id="amiro-test"))
-    env = add_environment(
-        system.runtime, list(system.sim.world.home.rooms), env_cfg, system.sensors, system.rules
-    )
+    mqtt = MqttConfig(url=broker, client_id="amiro-test")
+    env_cfg = base.environment.model_copy(update={"sensors": sensors, "mqtt": mqtt})
+    system = build_system(base.model_copy(update={"environment": env_cfg}))
+    env = system.environment
     assert env.bridge is not None
     peer = peer_factory(["amiro/home/notifications/ack", "homeassistant/#"])
     system.start()
@@ -61,4 +55,3 @@ def test_hot_reading_over_mqtt_runs_hydration_and_acks_over_mqtt(
     assert any("living_room_temperature" in t for t, _ in discovery)
     assert env.bridge.counts["sensor"] == 1 and env.bridge.counts["malformed"] == 0
     system.stop()
-    env.close()

@@ -190,3 +190,50 @@ def test_prune_does_not_clip_a_corner_cell() -> None:
     assert pruned == [(0, 0), (0, 2), (1, 2)]
     for a, b in itertools.pairwise(pruned):
         assert _segment_clear(a, b, lethal)
+
+
+def _dijkstra_cost(lethal: np.ndarray, step: np.ndarray, start: Cell, goal: Cell) -> float:
+    """Reference optimum: scipy's Dijkstra over the same 8-connected, corner-safe graph."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    h, w = lethal.shape
+    src, dst, wts = [], [], []
+    for r, c in itertools.product(range(h), range(w)):
+        if lethal[r, c]:
+            continue
+        for dr, dc in itertools.product((-1, 0, 1), repeat=2):
+            nr, nc = r + dr, c + dc
+            if (dr, dc) == (0, 0) or not (0 <= nr < h and 0 <= nc < w) or lethal[nr, nc]:
+                continue
+            if dr and dc and (lethal[r, nc] or lethal[nr, c]):
+                continue
+            src.append(r * w + c)
+            dst.append(nr * w + nc)
+            wts.append(math.hypot(dr, dc) * step[nr, nc])
+    graph = coo_matrix((wts, (src, dst)), shape=(h * w, h * w)).tocsr()
+    dist = dijkstra(graph, indices=start[0] * w + start[1])
+    return float(dist[goal[0] * w + goal[1]])
+
+
+def test_path_cost_matches_dijkstra_on_random_soft_cost_grids() -> None:
+    rng = np.random.default_rng(11)
+    compared = 0
+    for _ in range(25):
+        lethal = rng.random((30, 30)) < 0.2
+        cost = rng.random((30, 30))
+        lethal[0, 0] = lethal[29, 29] = False
+        best = _dijkstra_cost(lethal, 1.0 + 4.0 * cost, (0, 0), (29, 29))
+        path = astar(lethal, cost, (0, 0), {(29, 29)}, cost_weight=4.0)
+        if not math.isfinite(best):
+            assert path is None
+            continue
+        assert path is not None
+        _assert_connected(path, lethal)
+        got = sum(
+            math.hypot(b[0] - a[0], b[1] - a[1]) * (1.0 + 4.0 * cost[b])
+            for a, b in itertools.pairwise(path)
+        )
+        assert got == pytest.approx(best, rel=1e-9)
+        compared += 1
+    assert compared >= 10

@@ -145,3 +145,22 @@ def test_shipped_map_plans_between_all_places() -> None:
     # the ring is centred on the target's cell: allow half a cell diagonal on top of ± 0.25
     assert abs(end.distance_to(Point(seat.x, seat.y)) - 1.2) <= 0.25 + 0.75 * cm.frame.resolution
     assert not _lethal_at(cm, end.x, end.y)
+
+
+def test_plan_near_keeps_to_the_requested_distance_when_it_is_free() -> None:
+    # open floor around the target: the ring's near edge used to win (asked 1.2, got ~1.45)
+    cm = _room()
+    planner = GlobalPlanner(cm)
+    target = Point(4.53, 2.47)
+    for approach in (0.8, 1.0, 1.2):
+        path = planner.plan_near(Pose2D(1.0, 3.0, 0.0), target, approach, tolerance=0.25)
+        assert path is not None
+        assert abs(path[-1].distance_to(target) - approach) <= 0.75 * RES + 1e-9
+
+
+def test_plan_starts_at_the_robot_not_at_its_cell_centre() -> None:
+    cm = _room()
+    start = Pose2D(1.03, 3.07, 0.0)
+    path = GlobalPlanner(cm).plan_to_pose(start, Pose2D(2.0, 3.0))
+    assert path is not None
+    assert (path[0].x, path[0].y) == (start.x, start.y)

@@ -49,6 +49,8 @@ def test_triggering_a_task_and_a_scenario_queues_behaviours(
 
 def test_device_command_changes_the_reported_state(client: TestClient, running: Running) -> None:
     headers = {"X-CSRF-Token": login(client)}
+    first = client.get("/api/state").json()["devices"]  # known before any command
+    assert first["kitchen"] == {"lights": "off", "blinds": "close"}
     res = client.post(
         "/api/devices", json={"room": "kitchen", "device": "lights", "state": "on"}, headers=headers
     )
@@ -68,9 +70,11 @@ def test_device_command_changes_the_reported_state(client: TestClient, running: 
     assert wrong.status_code == 422
 
 
-def test_health_chart_data_and_honest_chat(client: TestClient, running: Running) -> None:
+def test_health_chart_data_and_a_chat_answered_from_the_store(
+    client: TestClient, running: Running
+) -> None:
     headers = {"X-CSRF-Token": login(client)}
-    store = running.served.environment.health
+    store = running.served.system.environment.health
     store.add_many(
         [
             HealthMeasurement("maria", "heart_rate", 60.0 + d, f"2026-07-{d:02d}T09:00:00+00:00")
@@ -82,15 +86,22 @@ def test_health_chart_data_and_honest_chat(client: TestClient, running: Running)
     assert len(data["days"]) == 10
     assert client.get("/api/health/maria/mood").status_code == 422
     assert client.get("/api/health/Robert');--/steps").status_code in (404, 422)
-    reply = client.post("/api/chat", json={"text": "bună ziua", "lang": "ro"}, headers=headers)
-    assert reply.status_code == 200 and "dialog" in reply.json()["reply"]
+    text = "care a fost pulsul meu ieri"  # the simulated day is 2026-07-15
+    body = {"text": text, "lang": "ro", "user": "maria"}
+    reply = client.post("/api/chat", json=body, headers=headers)
+    assert reply.status_code == 200 and "74" in reply.json()["reply"]
+    assert reply.json()["user"] == "maria"
+    own = client.post("/api/chat", json={"text": "what is my heart rate"}, headers=headers).json()
+    assert own["user"] == "admin" and "no measurement" in own["reply"]  # admin has no data
     assert (
         client.post("/api/chat", json={"text": "hi", "lang": "de"}, headers=headers).status_code
         == 422
     )
+    bad_user = {"text": "hi", "user": "Robert');--"}
+    assert client.post("/api/chat", json=bad_user, headers=headers).status_code == 422
     transcript = client.get("/api/state").json()["transcript"]
     deadline = time.monotonic() + 5
-    while time.monotonic() < deadline and not any(m["who"] == "web" for m in transcript):
+    while time.monotonic() < deadline and not any(m["who"] == "maria" for m in transcript):
         time.sleep(0.05)
         transcript = client.get("/api/state").json()["transcript"]
-    assert any(m["who"] == "web" and m["text"] == "bună ziua" for m in transcript)
+    assert any(m["who"] == "maria" and m["text"] == text for m in transcript)

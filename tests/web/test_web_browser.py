@@ -1,5 +1,6 @@
 """In Debian's headless chromium (Playwright): sign in, watch the robot move on the map,
-trigger a scenario, send a chat message and read the reply."""
+trigger a scenario, and talk to the dialogue: a light switched on, a go_to behaviour queued,
+a resident's heart rate read from the health store."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 from playwright.sync_api import Page, expect, sync_playwright
 from web_served import PASSWORD, Running, start_served
 
+from amiro.environment.messages import HealthMeasurement
 from amiro.web.server import WebServer
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
@@ -53,6 +55,8 @@ def robot_pose(page: Page) -> str:
 
 def test_dashboard_in_a_real_browser(site: tuple[Running, str], page: Page) -> None:
     running, url = site
+    measured = HealthMeasurement("maria", "heart_rate", 67.0, "2026-07-14T09:00:00+00:00")
+    running.served.system.environment.health.add(measured)  # the simulated day is 07-15
     page.goto(url + "/")
     page.wait_for_url("**/login")
     page.fill("#password", "wrong")
@@ -76,8 +80,26 @@ def test_dashboard_in_a_real_browser(site: tuple[Running, str], page: Page) -> N
     assert robot_pose(page) != start  # the map follows the robot
 
     page.select_option("#chat-lang", "fr")
-    page.fill("#chat-input", "Bonjour robot")
+    page.fill("#chat-input", "allume la lumière dans la cuisine")
     page.click("#chat-send")
-    expect(page.locator("#chat-reply")).to_contain_text("module de dialogue")
-    expect(page.locator("#transcript")).to_contain_text("Bonjour robot")
-    assert any(r.name == "hydration" for r in running.served.system.engine.runs.values())
+    expect(page.locator("#chat-reply")).to_contain_text("C'est fait")
+    expect(page.locator("#transcript")).to_contain_text("allume la lumière dans la cuisine")
+    expect(page.locator("#lights-kitchen")).to_have_text("lights off")  # the lights are on
+
+    page.select_option("#chat-lang", "en")
+    page.fill("#chat-input", "go to the kitchen")
+    page.click("#chat-send")
+    expect(page.locator("#chat-reply")).to_contain_text("I am going to kitchen")
+    page.wait_for_function(  # queued behind the hydration behaviour, or running
+        "() => /go_to/.test(document.querySelector('#queue').textContent"
+        " + document.querySelector('#current-task').textContent)",
+        polling=200,
+        timeout=10_000,
+    )
+    names = {r.name for r in running.served.system.engine.runs.values()}
+    assert {"hydration", "go_to"} <= names
+
+    page.select_option("#chat-user", "maria")  # the tablet by Maria's chair
+    page.fill("#chat-input", "what was my heart rate yesterday")
+    page.click("#chat-send")
+    expect(page.locator("#chat-reply")).to_contain_text("Yesterday, your heart rate is 67")

@@ -26,7 +26,7 @@ class Running:
 def start_served(speed: float = 20.0) -> Running:
     cfg = load_serve_config(None)
     web = WebConfig(admin_password=SecretStr(PASSWORD), api_token=SecretStr(TOKEN), port=0)
-    served = assemble(type(cfg)(cfg.system, cfg.environment, web), SimClock(speed=speed))
+    served = assemble(type(cfg)(cfg.system, web), SimClock(speed=speed))
     served.system.start()
     loop = RuntimeLoop(served.runtime)
     loop.start()

@@ -60,10 +60,10 @@ def occlude(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
 def augment(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
     """A random mix: untouched, fixed dropout, flicker or a region occluded."""
     pick = rng.random()
-    if pick < 0.35:
+    if pick < 0.3:
         return frames
-    if pick < 0.6:
-        return drop_joints(frames, rng.uniform(0.05, 0.5), rng)
-    if pick < 0.75:
+    if pick < 0.65:
+        return drop_joints(frames, rng.uniform(0.05, 0.55), rng)
+    if pick < 0.8:
         return flicker(frames, rng.uniform(0.05, 0.4), rng)
     return occlude(frames, rng)

@@ -5,7 +5,11 @@ Wall time is read here only to measure speed, never to drive behaviour.
 
 from __future__ import annotations
 
+import itertools
+import os
 import time
+from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -28,31 +32,41 @@ def _stream_of(frames: int) -> np.ndarray:
     return sensor_noise(to_camera(np.concatenate(clips)[:frames], View()), rng)
 
 
-def run_bench(model: ActivityModel, iterations: int = 100) -> dict[str, Any]:
-    """Mean milliseconds per window for each length, and per frame when streaming."""
-    frames = _stream_of(max(LENGTHS))
-    lengths: dict[str, float] = {}
-    for n in LENGTHS:
-        window = frames[:n]
-        model.classify(window)  # warm-up
+def per_call_ms(call: Callable[[], object], iterations: int, repeats: int) -> float:
+    """Median over ``repeats`` rounds of the mean milliseconds per call: other jobs on a
+    shared machine slow some rounds down, the median ignores them."""
+    call()  # warm-up
+    rounds = []
+    for _ in range(repeats):
         start = time.perf_counter()
         for _ in range(iterations):
-            model.classify(window)
-        lengths[str(n)] = round((time.perf_counter() - start) * 1000.0 / iterations, 4)
+            call()
+        rounds.append((time.perf_counter() - start) * 1000.0 / iterations)
+    return round(float(np.median(rounds)), 4)
+
+
+def run_bench(model: ActivityModel, iterations: int = 200, repeats: int = 7) -> dict[str, Any]:
+    """Milliseconds per window for each length, and per frame when streaming."""
+    frames = _stream_of(max(LENGTHS))
+    lengths = {
+        str(n): per_call_ms(partial(model.classify, frames[:n]), iterations, repeats)
+        for n in LENGTHS
+    }
     stream = model.stream()
-    stream.push(frames[0])
-    pushed = 0
-    start = time.perf_counter()
-    for _ in range(max(1, iterations // len(frames) + 1)):
-        stream.reset()
-        for frame in frames:
-            stream.push(frame)
-            pushed += 1
-    per_frame = (time.perf_counter() - start) * 1000.0 / pushed
+    order = itertools.cycle(range(len(frames)))
+
+    def push_next() -> None:
+        i = next(order)
+        if i == 0:
+            stream.reset()
+        stream.push(frames[i])
+
     return {
         "lengths": lengths,
-        "stream_ms_per_frame": round(per_frame, 4),
+        "stream_ms_per_frame": per_call_ms(push_next, iterations, repeats),
         "iterations": iterations,
+        "repeats": repeats,
+        "load_average": round(os.getloadavg()[0], 2),
         "paper_ms": {str(k): v for k, v in PAPER_MS.items()},
         "targets_ms": TARGETS_MS,
         "model_bytes": model.path.stat().st_size,

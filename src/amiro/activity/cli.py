@@ -21,10 +21,10 @@ def register(sub: Any) -> None:
     )
     train.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
     train.add_argument("--checkpoints", type=Path, help="folder for per-epoch checkpoints")
-    train.add_argument("--epochs", type=int, default=16)
+    train.add_argument("--epochs", type=int, default=40)
     train.add_argument("--seed", type=int, default=0)
-    train.add_argument("--hidden", type=int, default=96, help="LSTM and feature width")
-    train.add_argument("--per-cell", type=int, default=3, help="windows per subject/view/action")
+    train.add_argument("--hidden", type=int, default=64, help="LSTM and feature width")
+    train.add_argument("--per-cell", type=int, default=6, help="windows per subject/view/action")
     train.add_argument("--max-steps", type=int, help="stop after this many optimiser steps")
     add_json_flag(train)
     train.set_defaults(handler=_train)
@@ -51,7 +51,8 @@ def register(sub: Any) -> None:
 
     bench = cmds.add_parser("bench", help="inference time, preprocessing included (Table 16)")
     bench.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
-    bench.add_argument("--iterations", type=int, default=100)
+    bench.add_argument("--iterations", type=int, default=200, help="calls per round")
+    bench.add_argument("--repeats", type=int, default=7, help="rounds; the median is reported")
     add_json_flag(bench)
     bench.set_defaults(handler=_bench)
 
@@ -142,7 +143,8 @@ def _bench(args: argparse.Namespace) -> int:
     from amiro.activity.onnx_model import ActivityModel
 
     _positive(args.iterations, "--iterations")
-    report = run_bench(ActivityModel(args.model), args.iterations)
+    _positive(args.repeats, "--repeats")
+    report = run_bench(ActivityModel(args.model), args.iterations, args.repeats)
     if args.json:
         emit_json(report)
     else:

@@ -19,3 +19,5 @@ class ActivityConfig(Section):
         default=0.6, ge=0.0, le=1.0, description="share of joints seen to try classifying"
     )
     accuracy: float = Field(default=0.95, ge=0.0, le=1.0, description="oracle backend only")
+    fall_detection: bool = Field(default=True, description="watch everyone in view for falls")
+    fall_period_s: float = Field(default=0.5, gt=0.0, description="s between fall checks")

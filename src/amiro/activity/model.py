@@ -31,7 +31,7 @@ class MultiStageLSTM(nn.Module):
     """``forward(x, h0, c0)``: x ``(B, T, F)``, states ``(stages, B, hidden)``; returns the
     per-stage logits ``(stages, B, T, classes)`` and the final states."""
 
-    def __init__(self, features: int, classes: int, hidden: int = 96, stages: int = 3) -> None:
+    def __init__(self, features: int, classes: int, hidden: int = 64, stages: int = 3) -> None:
         super().__init__()
         self.hidden = hidden
         self.stages = nn.ModuleList(

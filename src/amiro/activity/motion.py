@@ -339,37 +339,65 @@ class Idle(Plan):
 
 
 class Drink(Plan):
-    span = (2.4, 3.6)
+    """Bring the cup to the mouth (0.6-0.9 s), hold it there while the head tilts back
+    and the cup tips up, and put it down: slow, with a long still hold."""
+
+    def duration(self, rng: np.random.Generator) -> float:
+        self.rise = float(rng.uniform(0.6, 0.9))
+        self.hold = float(rng.uniform(1.0, 2.2))
+        self.fall = float(rng.uniform(0.6, 0.8))
+        self.tilt = float(rng.uniform(0.3, 0.5))
+        return self.rise + self.hold + self.fall
+
+    def _tipping(self, tau: FloatArray) -> FloatArray:
+        return bump(tau, self.rise - 0.1, 0.4, self.hold - 0.3, 0.4)
 
     def shape(self, clip: Clip, ctl: Controls, tau: FloatArray, sitting: bool) -> None:
-        hold = clip.length - 1.6
-        ctl.head_pitch = ctl.head_pitch - 0.25 * bump(tau, 0.6, 0.3, hold - 0.4, 0.3)
+        tipping = self._tipping(tau)
+        ctl.head_pitch = ctl.head_pitch - self.tilt * tipping
+        ctl.lean = ctl.lean - 0.4 * self.tilt * tipping
 
     def arms(
         self, clip: Clip, pose: Pose, tau: FloatArray, sitting: bool
     ) -> tuple[list[FloatArray], list[str], list[FloatArray | None]]:
-        return _dominant_only(clip, "mouth", bump(tau, 0.0, 0.8, clip.length - 1.6, 0.8))
+        weight = bump(tau, 0.0, self.rise, self.hold, self.fall)
+        tip = (self.tilt * self._tipping(tau))[:, None] * (0.15 * pose.up + 0.1 * pose.forward)
+        return _dominant_only(clip, "mouth", weight, tip)
 
 
 class Sneeze(Plan):
-    span = (1.6, 2.6)
+    """Hand(s) snap to the face (0.15-0.3 s), then one big forward jerk of head and trunk
+    (a sneeze) or two or three smaller ones (a cough), and the hand(s) drop soon after."""
+
+    def duration(self, rng: np.random.Generator) -> float:
+        self.rise = float(rng.uniform(0.15, 0.3))
+        cough = bool(rng.random() < 0.5)
+        if cough:  # (time to the next jerk, trunk pitch of this one)
+            count = int(rng.integers(2, 4))
+            self.jerks = [(rng.uniform(0.35, 0.5), rng.uniform(0.15, 0.3)) for _ in range(count)]
+        else:
+            self.jerks = [(0.45, rng.uniform(0.35, 0.55))]
+        self.both = bool(rng.random() < (0.2 if cough else 0.5))
+        self.fall = float(rng.uniform(0.35, 0.5))
+        return self.rise + sum(gap for gap, _ in self.jerks) + 0.2 + self.fall
 
     def shape(self, clip: Clip, ctl: Controls, tau: FloatArray, sitting: bool) -> None:
-        jerks = int(clip.rng.integers(1, 3))
-        for i in range(jerks):
-            at = 0.45 + 0.45 * i
-            ctl.lean = ctl.lean + clip.rng.uniform(0.25, 0.4) * bump(tau, at, 0.12, 0.05, 0.3)
-            ctl.head_pitch = ctl.head_pitch + 0.3 * bump(tau, at, 0.12, 0.05, 0.3)
-        self.both = bool(clip.rng.random() < 0.4)
-        self.end = 0.45 * jerks + 0.5
+        at = self.rise + 0.05
+        for gap, size in self.jerks:
+            jerk = bump(tau, at, 0.1, 0.05, 0.3)
+            ctl.lean = ctl.lean + size * jerk
+            ctl.head_pitch = ctl.head_pitch + 1.2 * size * jerk
+            at += gap
 
     def arms(
         self, clip: Clip, pose: Pose, tau: FloatArray, sitting: bool
     ) -> tuple[list[FloatArray], list[str], list[FloatArray | None]]:
-        w = bump(tau, 0.0, 0.35, self.end - 0.35, 0.5)
+        hold = sum(gap for gap, _ in self.jerks) + 0.2
+        w = bump(tau, 0.0, self.rise, hold, self.fall)
+        cover = (0.05 * w)[:, None] * pose.forward  # a hand in front of the face, not on it
         if self.both:
-            return [w, w], ["mouth", "mouth"], [None, None]
-        return _dominant_only(clip, "mouth", w)
+            return [w, w], ["mouth", "mouth"], [cover, cover]
+        return _dominant_only(clip, "mouth", w, cover)
 
 
 class TouchChest(Plan):

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from amiro.activity.skeleton import (
     DEPTH,
@@ -18,6 +19,7 @@ from amiro.activity.skeleton import (
     PARENT,
     PATH,
     ROOT_DISTANCE,
+    BoolArray,
     FloatArray,
     J,
     visible,
@@ -25,6 +27,8 @@ from amiro.activity.skeleton import (
 
 # ANCESTOR_RANK[j, k] = depth(k) + 1 when k is a strict ancestor of j: the deepest seen
 # ancestor of j is then an argmax.
+IntArray = npt.NDArray[np.intp]
+
 ANCESTOR_RANK = np.zeros((NUM_JOINTS, NUM_JOINTS))
 for _j in range(1, NUM_JOINTS):
     _k = PARENT[_j]
@@ -33,27 +37,51 @@ for _j in range(1, NUM_JOINTS):
         _k = PARENT[_k]
 
 FEATURES_PER_FRAME = NUM_JOINTS * 4  # 3 coordinates and a seen flag per joint
+# Each joint's parent; the root hangs from itself (its segment has length 0).
+PARENT_OR_SELF = np.array([max(p, 0) for p in PARENT])
+SEGMENT = ROOT_DISTANCE - ROOT_DISTANCE[PARENT_OR_SELF]
+
+
+def _anchors(seen: BoolArray) -> tuple[IntArray, FloatArray]:
+    """Per frame and joint, the deepest seen ancestor and the standard distance to it.
+
+    A whole skeleton (the common case) hangs every joint from its parent; only frames
+    with missing joints pay for the ancestor search."""
+    anchor = np.broadcast_to(PARENT_OR_SELF, seen.shape).copy()
+    partial = ~seen.all(axis=1)
+    if partial.any():
+        usable = seen[partial]
+        usable[:, 0] = True  # an unseen root stands in at the centroid
+        anchor[partial] = (usable[:, None, :] * ANCESTOR_RANK).argmax(axis=-1)
+    target: FloatArray = ROOT_DISTANCE - ROOT_DISTANCE[anchor]
+    return anchor, target
+
+
+def _bones(frames: FloatArray) -> tuple[FloatArray, BoolArray]:
+    """Bone-normalised positions (0 where unseen) and which joints were seen."""
+    seen = visible(frames)
+    pos = np.where(seen[..., None], frames, 0.0)
+    counts = seen.sum(axis=1)
+    no_root = ~seen[:, 0] & (counts > 0)
+    if no_root.any():  # the root stands in at the centroid of what was seen
+        pos[no_root, 0] = pos[no_root].sum(axis=1) / counts[no_root, None]
+    if seen.all():
+        vec = pos - pos[:, PARENT_OR_SELF]
+        target: FloatArray = SEGMENT
+    else:
+        anchor, target = _anchors(seen)
+        vec = pos - np.take_along_axis(pos, anchor[..., None], axis=1)
+    length = np.sqrt(np.einsum("tjc,tjc->tj", vec, vec))
+    scale = np.where(seen, target / np.maximum(length, 1e-6), 0.0)
+    scale[:, 0] = 0.0
+    out: FloatArray = pos[:, :1] + np.matmul(PATH, vec * scale[..., None])
+    out *= seen[..., None]
+    return out, seen
 
 
 def normalize_bones(frames: FloatArray) -> FloatArray:
     """Rescale every segment to its standard length, keeping directions; NaN stays NaN."""
-    seen = visible(frames)
-    pos = np.nan_to_num(frames)
-    counts = seen.sum(axis=1)
-    no_root = ~seen[:, 0] & (counts > 0)
-    if no_root.any():  # the root stands in at the centroid of what was seen
-        centroid = (pos * seen[..., None]).sum(axis=1) / np.maximum(counts, 1)[:, None]
-        pos[no_root, 0] = centroid[no_root]
-    anchors_ok = seen.copy()
-    anchors_ok[:, 0] = True
-    anchor = (anchors_ok[:, None, :] * ANCESTOR_RANK[None]).argmax(axis=-1)
-    anchor_pos = np.take_along_axis(pos, anchor[..., None], axis=1)
-    vec = pos - anchor_pos
-    length = np.linalg.norm(vec, axis=-1)
-    target = ROOT_DISTANCE[None, :] - ROOT_DISTANCE[anchor]
-    scale = np.where(seen, target / np.maximum(length, 1e-6), 0.0)
-    scale[:, 0] = 0.0
-    out: FloatArray = pos[:, :1] + np.einsum("jk,tkc->tjc", PATH, vec * scale[..., None])
+    out, seen = _bones(frames)
     out[~seen] = np.nan
     return out
 
@@ -83,26 +111,54 @@ class ViewFrame:
         rotation = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
         return ViewFrame(np.asarray(origin, dtype=np.float64), rotation)
 
+    @staticmethod
+    def of_bones(pos: FloatArray, seen: BoolArray) -> ViewFrame:
+        """The view frame of one frame of :func:`_bones` output."""
+        return ViewFrame.of(np.where(seen[:, None], pos, np.nan))
+
     def apply(self, frames: FloatArray) -> FloatArray:
         out: FloatArray = (frames - self.origin) @ self.rotation.T
         return out
 
 
-def features(normalised: FloatArray) -> np.ndarray:
-    """Model input per frame: coordinates (0 where unseen) and the seen flags, float32."""
+def _features(coords: FloatArray, seen: BoolArray) -> npt.NDArray[np.float32]:
+    """Model input ``(..., frames, 100)``: coordinates (0 where unseen) and seen flags."""
+    out = np.empty((*seen.shape[:-1], FEATURES_PER_FRAME), np.float32)
+    out[..., : NUM_JOINTS * 3] = (coords * seen[..., None]).reshape(*seen.shape[:-1], -1)
+    out[..., NUM_JOINTS * 3 :] = seen
+    return out
+
+
+def features(normalised: FloatArray) -> npt.NDArray[np.float32]:
+    """Model input per frame of view-normalised skeletons (NaN = unseen), float32."""
     seen = visible(normalised)
-    coords = np.nan_to_num(normalised).reshape(len(normalised), -1)
-    return np.concatenate([coords, seen], axis=1).astype(np.float32)
+    return _features(np.nan_to_num(normalised), seen)
 
 
-def preprocess(frames: FloatArray) -> np.ndarray:
+def preprocess(frames: FloatArray) -> npt.NDArray[np.float32]:
     """A raw skeleton sequence to model features, the view taken from its first frame."""
-    bones = normalize_bones(frames)
-    return features(ViewFrame.of(bones[0]).apply(bones))
+    pos, seen = _bones(frames)
+    return _features(ViewFrame.of_bones(pos[0], seen[0]).apply(pos), seen)
 
 
-def preprocess_batch(frames: FloatArray) -> np.ndarray:
-    """:func:`preprocess` over ``(batch, frames, 25, 3)``, bones normalised in one pass."""
+def preprocess_batch(frames: FloatArray) -> npt.NDArray[np.float32]:
+    """:func:`preprocess` over ``(batch, frames, 25, 3)``, in one pass over all frames."""
     b, t = frames.shape[:2]
-    bones = normalize_bones(frames.reshape(b * t, *frames.shape[2:])).reshape(frames.shape)
-    return np.stack([features(ViewFrame.of(seq[0]).apply(seq)) for seq in bones])
+    pos, seen = _bones(frames.reshape(b * t, *frames.shape[2:]))
+    pos, seen = pos.reshape(frames.shape), seen.reshape(b, t, NUM_JOINTS)
+    views = [ViewFrame.of_bones(pos[i, 0], seen[i, 0]) for i in range(b)]
+    origins = np.stack([v.origin for v in views])[:, None, None]
+    rotations = np.stack([v.rotation.T for v in views])[:, None]
+    return _features((pos - origins) @ rotations, seen)
+
+
+def view_features(view: ViewFrame, frames: FloatArray) -> npt.NDArray[np.float32]:
+    """Features of raw frames in a fixed view (streaming: the view of the first frame)."""
+    pos, seen = _bones(frames)
+    return _features(view.apply(pos), seen)
+
+
+def first_view(frame: FloatArray) -> ViewFrame:
+    """The view frame of a raw frame, bones normalised first."""
+    pos, seen = _bones(frame[None])
+    return ViewFrame.of_bones(pos[0], seen[0])

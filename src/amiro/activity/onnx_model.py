@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import onnxruntime as ort
 
-from amiro.activity.normalize import ViewFrame, features, normalize_bones, preprocess_batch
+from amiro.activity.normalize import ViewFrame, first_view, preprocess_batch, view_features
 from amiro.activity.skeleton import FloatArray
 from amiro.core.config import ConfigError
 
@@ -48,8 +48,12 @@ class ActivityModel:
         if not self.path.is_file():
             raise ConfigError(f"{self.path}: no such activity model file")
         options = ort.SessionOptions()
+        # One small LSTM per call: a second thread costs more in hand-offs than it saves,
+        # and the robot's other modules need the cores.
         options.intra_op_num_threads = 1
         options.inter_op_num_threads = 1
+        options.execution_mode = ort.ExecutionMode.ORT_SEQUENTIAL
+        options.graph_optimization_level = ort.GraphOptimizationLevel.ORT_ENABLE_ALL
         try:
             self.session = ort.InferenceSession(
                 str(self.path), options, providers=["CPUExecutionProvider"]
@@ -112,10 +116,9 @@ class StreamingClassifier:
 
     def push(self, frame: FloatArray) -> np.ndarray:
         """Add one raw frame ``(25, 3)``; returns the updated class probabilities."""
-        bones = normalize_bones(frame[None])
         if self.view is None:
-            self.view = ViewFrame.of(bones[0])
-        feats = features(self.view.apply(bones))[None]
+            self.view = first_view(frame)
+        feats = view_features(self.view, frame[None])[None]
         probs, self.h, self.c = self.model.run(feats, self.h, self.c)
         self.frames += 1
         out: np.ndarray = probs[0]

@@ -31,19 +31,27 @@ def describe(exc: ValidationError, source: str) -> str:
     return f"{source}: {where}: {msg}{tail}"
 
 
-def read_yaml(path: str | Path) -> Any:
+def read_text(path: str | Path) -> str:
+    """A UTF-8 text file's content, or a one-line ConfigError saying why it cannot be read."""
     p = Path(path)
     if not p.is_file():
         raise ConfigError(f"{p}: no such file")
     try:
-        return yaml.safe_load(p.read_text(encoding="utf-8"))
+        return p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{p}: cannot read: {exc}") from None
+
+
+def read_yaml(path: str | Path) -> Any:
+    p = Path(path)
+    text = read_text(p)
+    try:
+        return yaml.safe_load(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" line {mark.line + 1}" if mark is not None else ""
         problem = getattr(exc, "problem", None) or "invalid YAML"
         raise ConfigError(f"{p}:{where}: {problem}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{p}: cannot read: {exc}") from None
 
 
 def parse(model: type[ModelT], data: Any, source: str) -> ModelT:

@@ -108,7 +108,7 @@ def bench_web(requests: int = 2000) -> dict[str, float]:
 
     cfg = load_serve_config(None)
     web = WebConfig(admin_password=SecretStr("bench"), api_token=SecretStr("bench-token"))
-    served = assemble(type(cfg)(cfg.system, cfg.environment, web), SimClock())
+    served = assemble(type(cfg)(cfg.system, web), SimClock())
     served.system.start()
     served.runtime.spin_for(1.0)
 

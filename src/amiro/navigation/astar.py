@@ -1,27 +1,24 @@
-"""A* over a costmap, 8-connected, with an octile heuristic and soft obstacle costs."""
+"""A* over a costmap, 8-connected, with an octile heuristic and soft obstacle costs.
+
+The search loop is compiled with numba (flat arrays, a binary heap): a 1000 x 1000 grid is
+searched in tens of milliseconds instead of seconds in pure Python, so the robot can re-plan
+on a whole building floor whenever the lidar shows a blocked path.
+"""
 
 from __future__ import annotations
 
-import heapq
 import math
 
+import numba
 import numpy as np
-import numpy.typing as npt
 
 from amiro.navigation.costmap import BoolGrid, FloatGrid
 
-_MOVES = [
-    (-1, 0, 1.0),
-    (1, 0, 1.0),
-    (0, -1, 1.0),
-    (0, 1, 1.0),
-    (-1, -1, math.sqrt(2)),
-    (-1, 1, math.sqrt(2)),
-    (1, -1, math.sqrt(2)),
-    (1, 1, math.sqrt(2)),
-]
-
 Cell = tuple[int, int]
+
+_DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
+_DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
+_LEN = np.array([1.0, 1.0, 1.0, 1.0, math.sqrt(2), math.sqrt(2), math.sqrt(2), math.sqrt(2)])
 
 
 def astar(
@@ -40,49 +37,131 @@ def astar(
     if not goals or lethal[start]:
         return None
     h, w = lethal.shape
-    goal_arr = np.array(sorted(goals))
-    g_score: dict[Cell, float] = {start: 0.0}
-    parent: dict[Cell, Cell] = {}
-    heur_cache: dict[Cell, float] = {}
-    frontier: list[tuple[float, float, Cell]] = [(_octile_to_nearest(start, goal_arr), 0.0, start)]
-    closed: set[Cell] = set()
-    step_cost = 1.0 + cost_weight * cost
-    while frontier:
-        _, g, cell = heapq.heappop(frontier)
-        if cell in closed:
-            continue
-        if cell in goals:
-            path = [cell]
-            while cell in parent:
-                cell = parent[cell]
-                path.append(cell)
-            return path[::-1]
-        closed.add(cell)
-        r, c = cell
-        for dr, dc, length in _MOVES:
-            nr, nc = r + dr, c + dc
-            if not (0 <= nr < h and 0 <= nc < w) or lethal[nr, nc]:
+    goal_mask = np.zeros(h * w, dtype=np.bool_)
+    rows = np.array([g[0] for g in goals], dtype=np.int64)
+    cols = np.array([g[1] for g in goals], dtype=np.int64)
+    goal_mask[rows * w + cols] = True
+    box = np.array([rows.min(), rows.max(), cols.min(), cols.max()], dtype=np.int64)
+    step_cost = (1.0 + cost_weight * np.asarray(cost, dtype=np.float64)).reshape(-1)
+    blocked = np.ascontiguousarray(lethal, dtype=np.bool_).reshape(-1)
+    flat = _search(blocked, step_cost, h, w, start[0] * w + start[1], goal_mask, box)
+    return [(int(i) // w, int(i) % w) for i in flat] if flat.size else None
+
+
+@numba.njit(cache=True)
+def _box_octile(r: int, c: int, box: np.ndarray) -> float:  # type: ignore[type-arg]
+    """Octile distance to the goals' bounding box: admissible and consistent for any goal set."""
+    dr = max(box[0] - r, 0, r - box[1])
+    dc = max(box[2] - c, 0, c - box[3])
+    return max(dr, dc) + (math.sqrt(2.0) - 1.0) * min(dr, dc)
+
+
+@numba.njit(cache=True, inline="always")
+def _before(fa: float, ga: float, fb: float, gb: float) -> bool:
+    """Heap order: lower f first; on ties the deeper node (fewer re-expansions of a plateau)."""
+    return fa < fb or (fa == fb and ga > gb)
+
+
+@numba.njit(cache=True)
+def _search(
+    blocked: np.ndarray,  # type: ignore[type-arg]
+    step_cost: np.ndarray,  # type: ignore[type-arg]
+    h: int,
+    w: int,
+    start: int,
+    goal_mask: np.ndarray,  # type: ignore[type-arg]
+    box: np.ndarray,  # type: ignore[type-arg]
+) -> np.ndarray:  # type: ignore[type-arg]
+    """Flat indices of the path (empty when unreachable).
+
+    The open set is a binary heap over preallocated arrays with decrease-key: ``slot`` holds
+    each cell's heap position (-1 never seen, -2 closed), so no cell is pushed twice, and the
+    keys live in the heap arrays themselves so sifting stays in cache.
+    """
+    n = h * w
+    g_score = np.full(n, np.inf)
+    parent = np.full(n, -1, dtype=np.int64)
+    slot = np.full(n, -1, dtype=np.int64)
+    heap_cell = np.empty(n, dtype=np.int64)
+    heap_f = np.empty(n)
+    heap_g = np.empty(n)
+    g_score[start] = 0.0
+    heap_cell[0] = start
+    heap_f[0] = _box_octile(start // w, start % w, box)
+    heap_g[0] = 0.0
+    slot[start] = 0
+    size = 1
+    while size > 0:
+        cell = heap_cell[0]
+        slot[cell] = -2
+        size -= 1
+        if size > 0:  # move the last entry to the root and sift it down
+            lc, lf, lg = heap_cell[size], heap_f[size], heap_g[size]
+            i = 0
+            while True:
+                child = 2 * i + 1
+                if child >= size:
+                    break
+                if child + 1 < size and _before(
+                    heap_f[child + 1], heap_g[child + 1], heap_f[child], heap_g[child]
+                ):
+                    child += 1
+                if not _before(heap_f[child], heap_g[child], lf, lg):
+                    break
+                heap_cell[i], heap_f[i], heap_g[i] = heap_cell[child], heap_f[child], heap_g[child]
+                slot[heap_cell[i]] = i
+                i = child
+            heap_cell[i], heap_f[i], heap_g[i] = lc, lf, lg
+            slot[lc] = i
+        if goal_mask[cell]:
+            return _trace(parent, cell)
+        r, c = cell // w, cell % w
+        g = g_score[cell]
+        for k in range(8):
+            nr, nc = r + _DR[k], c + _DC[k]
+            if nr < 0 or nr >= h or nc < 0 or nc >= w:
                 continue
-            if dr and dc and (lethal[r, nc] or lethal[nr, c]):
+            nxt = nr * w + nc
+            if blocked[nxt] or slot[nxt] == -2:
+                continue
+            if k >= 4 and (blocked[r * w + nc] or blocked[nr * w + c]):
                 continue  # no corner cutting past an obstacle
-            nxt = (nr, nc)
-            ng = g + length * step_cost[nr, nc]
-            if ng < g_score.get(nxt, math.inf):
-                g_score[nxt] = ng
-                parent[nxt] = cell
-                hv = heur_cache.get(nxt)
-                if hv is None:
-                    hv = _octile_to_nearest(nxt, goal_arr)
-                    heur_cache[nxt] = hv
-                heapq.heappush(frontier, (ng + hv, ng, nxt))
-    return None
+            ng = g + _LEN[k] * step_cost[nxt]
+            if ng >= g_score[nxt]:
+                continue
+            g_score[nxt] = ng
+            parent[nxt] = cell
+            nf = ng + _box_octile(nr, nc, box)
+            i = slot[nxt]
+            if i < 0:
+                i = size
+                size += 1
+            while i > 0:  # sift up (a new entry, or a decreased key)
+                up = (i - 1) // 2
+                if not _before(nf, ng, heap_f[up], heap_g[up]):
+                    break
+                heap_cell[i], heap_f[i], heap_g[i] = heap_cell[up], heap_f[up], heap_g[up]
+                slot[heap_cell[i]] = i
+                i = up
+            heap_cell[i], heap_f[i], heap_g[i] = nxt, nf, ng
+            slot[nxt] = i
+    return np.empty(0, dtype=np.int64)
 
 
-def _octile_to_nearest(cell: Cell, goal_arr: npt.NDArray[np.int64]) -> float:
-    """Admissible: every step costs at least its length."""
-    dr = np.abs(goal_arr[:, 0] - cell[0])
-    dc = np.abs(goal_arr[:, 1] - cell[1])
-    return float((np.maximum(dr, dc) + (math.sqrt(2) - 1) * np.minimum(dr, dc)).min())
+@numba.njit(cache=True)
+def _trace(parent: np.ndarray, cell: int) -> np.ndarray:  # type: ignore[type-arg]
+    """The path from the start to ``cell`` by following parents back."""
+    length = 1
+    at = cell
+    while parent[at] >= 0:
+        at = parent[at]
+        length += 1
+    path = np.empty(length, dtype=np.int64)
+    at = cell
+    for k in range(length - 1, -1, -1):
+        path[k] = at
+        at = parent[at]
+    return path
 
 
 def prune(path: list[Cell], lethal: BoolGrid) -> list[Cell]:

@@ -97,7 +97,7 @@ def _drive(
         twist, arrived = follower.command(base.pose)
         if arrived:
             break
-        cmd = dwa.command(base.pose, base.velocity, twist)
+        cmd = dwa.command(base.pose, base.velocity, twist, path[-1])
         base.set_command(cmd.linear.x, cmd.linear.y, cmd.angular.z)
         for _ in range(PHYSICS_STEPS):
             base.step(CONTROL_DT / PHYSICS_STEPS, is_free)

@@ -22,6 +22,14 @@ def register(sub: Any) -> None:
     bm.add_argument("--seed", type=int, default=0)
     add_json_flag(bm)
     bm.set_defaults(handler=_benchmark)
+    exp = nav_sub.add_parser("experiments", help="the paper's section-4.3 experiments")
+    exp.add_argument("--runs", type=int, default=5, help="runs per experiment (seeds)")
+    exp.add_argument("--seed", type=int, default=0)
+    exp.add_argument(
+        "--max-speed", type=float, default=0.45, help="m/s, up to Pepper's 0.55 (default 0.45)"
+    )
+    add_json_flag(exp)
+    exp.set_defaults(handler=_experiments)
     bench = nav_sub.add_parser("bench", help="per-cycle speed: A*, DWA, SLAM, AMCL")
     bench.add_argument("--seed", type=int, default=0)
     add_json_flag(bench)
@@ -53,6 +61,21 @@ def _benchmark(args: argparse.Namespace) -> int:
         raise ConfigError("--trials must be at least 1")
     grid = load_map(Path(args.map))
     _print(run_benchmark(grid, args.trials, np.random.default_rng(args.seed)), args.json)
+    return 0
+
+
+def _experiments(args: argparse.Namespace) -> int:
+    from amiro.navigation.experiments import PEPPER_MAX_SPEED, format_table, run_experiments
+
+    if args.runs < 1:
+        raise ConfigError("--runs must be at least 1")
+    if not 0.05 <= args.max_speed <= PEPPER_MAX_SPEED:
+        raise ConfigError(f"--max-speed must be between 0.05 and {PEPPER_MAX_SPEED} m/s")
+    result = run_experiments(args.runs, args.seed, args.max_speed)
+    if args.json:
+        emit_json(result)
+    else:
+        print(format_table(result))
     return 0
 
 

@@ -37,6 +37,9 @@ class DwaParams:
     berth: float = 0.35  # clearance beyond the footprint below which cost rises
     clearance_weight: float = 0.6
     turn_weight: float = 0.1
+    goal_relief_m: float = (
+        0.6  # this close to the goal, nearing obstacles down to its clearance is free
+    )
 
 
 class DynamicWindow:
@@ -76,8 +79,18 @@ class DynamicWindow:
         ys = pose.y + vx * sin_int + vy * cos_int
         return xs, ys
 
-    def command(self, pose: Pose2D, current: tuple[float, float, float], preferred: Twist) -> Twist:
-        """The admissible velocity closest to ``preferred`` that keeps clear of obstacles."""
+    def command(
+        self,
+        pose: Pose2D,
+        current: tuple[float, float, float],
+        preferred: Twist,
+        goal: Pose2D | None = None,
+    ) -> Twist:
+        """The admissible velocity closest to ``preferred`` that keeps clear of obstacles.
+
+        Near ``goal`` the berth term stops at the goal's own clearance: a goal 0.6 m from a
+        wall must be reachable, and at creeping speed the berth cost would outweigh tracking.
+        """
         p = self.params
         cm = self.costmap
         cand = self._candidates(current, preferred)
@@ -94,7 +107,10 @@ class DynamicWindow:
         # only getting closer to obstacles costs: holding still or passing alongside is free
         margin = np.maximum(clear - cm.robot_radius, 0.0)
         near = np.exp(-margin / p.berth).mean(axis=1)
-        near_here = np.exp(-max(here - cm.robot_radius, 0.0) / p.berth)
+        ref_clear = here
+        if goal is not None and goal.distance_to(pose) < p.goal_relief_m:
+            ref_clear = min(here, cm.clearance_at(goal.x, goal.y))
+        near_here = np.exp(-max(ref_clear - cm.robot_radius, 0.0) / p.berth)
         cost = track + p.clearance_weight * np.maximum(near - near_here, 0.0)
         cost[~admissible] = np.inf
         best = int(np.argmin(cost))

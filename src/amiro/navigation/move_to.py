@@ -206,7 +206,8 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         if arrived:
             self._finish(True, "arrived")
             return
-        self.cmd_pub.publish(self.dwa.command(pose, self.velocity, twist))
+        goal = active.follower.path[-1]
+        self.cmd_pub.publish(self.dwa.command(pose, self.velocity, twist, goal))
         active.handle.publish_feedback(MoveToFeedback(pose, active.follower.remaining(pose)))
         self._check_progress(active, pose)
 

@@ -17,11 +17,14 @@ class GlobalPlanner:
     def __init__(self, costmap: Costmap) -> None:
         self.costmap = costmap
 
-    def _to_poses(self, cells: list[Cell], final_theta: float) -> list[Pose2D]:
+    def _to_poses(self, cells: list[Cell], final_theta: float, start: Pose2D) -> list[Pose2D]:
+        """Waypoints from the robot itself (not its cell's centre, up to half a cell away)."""
         frame = self.costmap.frame
         # Shortcuts must keep a wider berth than the lethal zone: Pepper's arms swing out.
         berth = self.costmap.clearance < self.costmap.inscribed + _BERTH_M
         pts = [frame.to_world(r, c) for r, c in prune(cells, berth)]
+        if frame.to_cell(start.x, start.y) == cells[0]:
+            pts[0] = (start.x, start.y)
         poses = []
         for i, (x, y) in enumerate(pts):
             if i + 1 < len(pts):
@@ -60,34 +63,46 @@ class GlobalPlanner:
         cells = astar(self.costmap.lethal, self.costmap.cost, s, {g})
         if cells is None:
             return None
-        path = self._to_poses(cells, goal.theta)
+        path = self._to_poses(cells, goal.theta, start)
         path[-1] = goal
         return path
 
     def plan_near(
         self, start: Pose2D, target: Point, approach: float, tolerance: float = 0.25
     ) -> list[Pose2D] | None:
-        """Path to any free spot ``approach`` (± tolerance) metres from ``target``, facing it."""
+        """Path to a free spot ``approach`` metres from ``target``, facing it.
+
+        Spots within a cell of the requested distance come first; only when none of them is
+        reachable does the search widen to ``approach ± tolerance`` (a cheaper outer spot
+        would otherwise always win: the ring's near edge is the robot's side).
+        """
         s = self._start_cell(start)
         if s is None:
             return None
         frame = self.costmap.frame
         res = frame.resolution
         tr, tc = frame.to_cell(target.x, target.y)
-        reach = math.ceil((approach + tolerance) / res)
-        rows = np.arange(tr - reach, tr + reach + 1)
-        cols = np.arange(tc - reach, tc + reach + 1)
-        rr, cc = np.meshgrid(rows, cols, indexing="ij")
-        dist = np.hypot(rr - tr, cc - tc) * res
-        ring = np.abs(dist - approach) <= tolerance
+        reach = math.ceil((approach + tolerance) / res) + 1
+        rr, cc = np.meshgrid(
+            np.arange(tr - reach, tr + reach + 1),
+            np.arange(tc - reach, tc + reach + 1),
+            indexing="ij",
+        )
         inside = (rr >= 0) & (rr < frame.height) & (cc >= 0) & (cc < frame.width)
-        ring &= inside
-        goals = {(int(r), int(c)) for r, c in zip(rr[ring], cc[ring], strict=True)}
-        cells = astar(self.costmap.lethal, self.costmap.cost, s, goals)
+        xs = frame.origin_x + (cc + 0.5) * res
+        ys = frame.origin_y + (rr + 0.5) * res
+        off = np.abs(np.hypot(xs - target.x, ys - target.y) - approach)
+        cells = None
+        for band in (min(0.75 * res, tolerance), tolerance):
+            ring = inside & (off <= band)
+            goals = {(int(r), int(c)) for r, c in zip(rr[ring], cc[ring], strict=True)}
+            cells = astar(self.costmap.lethal, self.costmap.cost, s, goals)
+            if cells is not None:
+                break
         if cells is None:
             return None
         gx, gy = frame.to_world(*cells[-1])
         facing = math.atan2(target.y - gy, target.x - gx)
-        path = self._to_poses(cells, facing)
+        path = self._to_poses(cells, facing, start)
         path[-1] = Pose2D(gx, gy, facing)
         return path

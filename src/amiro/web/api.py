@@ -10,7 +10,6 @@ import asyncio
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass
-from datetime import date, datetime
 from typing import Any, TypeVar
 
 from fastapi import APIRouter, HTTPException, Path, Query, Request
@@ -19,6 +18,7 @@ from amiro.behavior.graph import TaskGraph
 from amiro.behavior.task import TaskError, make_task, task_types
 from amiro.core.messages import Notification
 from amiro.environment.assembly import Environment
+from amiro.environment.days import clock_date
 from amiro.environment.messages import DEVICE_STATES, HEALTH_METRICS, DeviceCommand
 from amiro.environment.topics import DEVICE_COMMAND_TOPIC, NOTIFICATIONS_TOPIC
 from amiro.system import System
@@ -105,11 +105,16 @@ def build_router(backend: Backend) -> APIRouter:
         return {"id": ident}
 
     @router.post("/chat")
-    async def chat(body: ChatBody) -> dict[str, Any]:
-        await on_runtime(lambda: gw.note_chat("web", body.text, body.lang))
-        reply = await asyncio.to_thread(backend.chat.reply, body.text, body.lang)
-        await on_runtime(lambda: gw.note_chat("robot", reply, body.lang))
-        return {"reply": reply, "lang": body.lang}
+    async def chat(body: ChatBody, request: Request) -> dict[str, Any]:
+        user = body.user or str(request.state.user)
+
+        def converse() -> str:
+            gw.note_chat(user, body.text, body.lang)
+            reply = backend.chat.reply(body.text, body.lang, user)
+            gw.note_chat("robot", reply, body.lang)
+            return reply
+
+        return {"reply": await on_runtime(converse), "lang": body.lang, "user": user}
 
     @router.get("/health/users")
     async def health_users() -> dict[str, Any]:
@@ -125,7 +130,7 @@ def build_router(backend: Backend) -> APIRouter:
             raise HTTPException(422, f"metric must be one of {', '.join(HEALTH_METRICS)}")
 
         def query() -> dict[str, Any]:
-            today = _today(system)
+            today = clock_date(system.runtime.clock)
             latest = env.health.latest(user, metric)
             trend = env.health.trend(user, metric, today, days)
             return {"latest": latest.to_dict() if latest else None, **trend.to_dict()}
@@ -158,8 +163,3 @@ def build_router(backend: Backend) -> APIRouter:
         return {"notifications": await on_runtime(lambda: env.ledger.recent(limit))}
 
     return router
-
-
-def _today(system: System) -> date:
-    clock = system.runtime.clock
-    return datetime.fromisoformat(clock.iso(clock.now())).date()

@@ -4,24 +4,22 @@ from __future__ import annotations
 
 from typing import Protocol
 
-LANGUAGES = ("en", "ro", "fr")
+from amiro.dialogue.manager import DialogueManager
 
 
 class ChatPort(Protocol):
-    def reply(self, text: str, lang: str) -> str:
-        """The robot's answer to ``text`` said in ``lang`` (en, ro or fr)."""
+    def reply(self, text: str, lang: str, user: str) -> str:
+        """The robot's answer to ``text`` said by ``user`` in ``lang`` (en, ro or fr); called
+        on the runtime's thread, since answering may act on the home or the robot."""
         ...
 
 
-UNAVAILABLE = {
-    "en": "The dialogue module is not connected, so I cannot answer yet.",
-    "ro": "Modulul de dialog nu este conectat, așa că încă nu pot răspunde.",
-    "fr": "Le module de dialogue n'est pas connecté, je ne peux donc pas encore répondre.",
-}
+class DialogueChat:
+    """The system's dialogue manager: one conversation per user (a question it asks back,
+    "in which room?", waits for that user's next message), answers in the user's language."""
 
+    def __init__(self, manager: DialogueManager) -> None:
+        self.manager = manager
 
-class UnavailableChat:
-    """Until a dialogue backend is wired in: says so plainly instead of inventing answers."""
-
-    def reply(self, text: str, lang: str) -> str:
-        return UNAVAILABLE.get(lang, UNAVAILABLE["en"])
+    def reply(self, text: str, lang: str, user: str) -> str:
+        return self.manager.handle(text, lang, user).text

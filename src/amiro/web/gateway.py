@@ -58,6 +58,10 @@ class GatewayNode(Node):
         self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, 1000)
         self.create_subscription(DEVICE_STATE_TOPIC, DeviceState, self._on_device, 1000)
         self.create_timer(self.period_s, self._tick)
+        devices = self.system.environment.devices
+        if devices is not None:  # their first reports went out before this node started
+            for (room, device), state in devices.states.items():
+                self._note_device(room, device, state)
         self._tick()
 
     # --- any thread -------------------------------------------------------------------------
@@ -99,7 +103,10 @@ class GatewayNode(Node):
         self.sensors.setdefault(r.room, {})[r.sensor] = round(r.value, 2)
 
     def _on_device(self, s: DeviceState) -> None:
-        self.devices.setdefault(s.room, {})[s.device] = s.state
+        self._note_device(s.room, s.device, s.state)
+
+    def _note_device(self, room: str, device: str, state: str) -> None:
+        self.devices.setdefault(room, {})[device] = state
 
     def _tick(self) -> None:
         self.inbox.drain()

@@ -21,6 +21,11 @@ class LoginBody(Body):
 class ChatBody(Body):
     text: str = Field(min_length=1, max_length=500)
     lang: Literal["en", "ro", "fr"] = "en"
+    user: str = Field(
+        default="",
+        pattern=r"^[a-z0-9_]{0,40}$",
+        description="the resident speaking (a tablet by their chair); empty: the signed-in user",
+    )
 
 
 class TaskBody(Body):

@@ -152,15 +152,18 @@ async function main() {
   $("health-metric").replaceChildren(...health.metrics.map((m) => new Option(m, m)));
   $("health-user").onchange = $("health-metric").onchange = loadHealth;
   loadHealth().catch((e) => show(e.message));
-  render(await api("/state"));
+  const first = await api("/state");
+  const residents = (first.people || []).map((person) => new Option(`as ${person.name}`, person.name));
+  $("chat-user").replaceChildren(new Option("as me", ""), ...residents);
+  render(first);
   connect();
 }
 
 $("chat-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  const text = $("chat-input").value, lang = $("chat-lang").value;
+  const text = $("chat-input").value, lang = $("chat-lang").value, user = $("chat-user").value;
   try {
-    const r = await api("/chat", { text, lang });
+    const r = await api("/chat", { text, lang, user });
     $("chat-reply").textContent = r.reply;
     $("chat-input").value = "";
   } catch (e) { $("chat-reply").textContent = e.message; }

@@ -1,0 +1,113 @@
+"""The dialogue's answer sources backed by the environment: health store, calendar, devices."""
+
+from __future__ import annotations
+
+from datetime import date
+
+import pytest
+
+from amiro.core.bus import Bus
+from amiro.core.clock import SimClock
+from amiro.core.config import parse
+from amiro.environment.days import clock_date, resolve_day
+from amiro.environment.dialogue_calendar import ConfiguredCalendar
+from amiro.environment.dialogue_devices import BusDeviceControl
+from amiro.environment.dialogue_health import StoreHealth
+from amiro.environment.health_store import HealthStore
+from amiro.environment.messages import DeviceCommand, HealthMeasurement
+from amiro.environment.reminders import RemindersConfig
+from amiro.environment.topics import DEVICE_COMMAND_TOPIC
+
+TODAY = date(2026, 7, 15)  # the simulated clock's first day
+
+
+def test_days_follow_the_runtime_clock() -> None:
+    assert clock_date(SimClock()) == TODAY
+    assert clock_date(SimClock(start=86_400.0)) == date(2026, 7, 16)
+    assert resolve_day("yesterday", TODAY) == date(2026, 7, 14)
+    assert resolve_day("tomorrow", TODAY) == date(2026, 7, 16)
+    assert resolve_day("2026-07-01", TODAY) == date(2026, 7, 1)
+    assert resolve_day("next week", TODAY) is None
+
+
+@pytest.fixture
+def health() -> StoreHealth:
+    store = HealthStore()
+    store.add_many(
+        [
+            HealthMeasurement("maria", "blood_pressure", 130.0, "2026-07-14T08:00:00+00:00", 80.0),
+            HealthMeasurement("maria", "blood_pressure", 134.0, "2026-07-14T20:00:00+00:00", 84.0),
+            HealthMeasurement("maria", "blood_pressure", 121.4, "2026-07-15T08:00:00+00:00", 77.6),
+            HealthMeasurement("maria", "blood_pressure", 124.0, "2026-07-15T09:30:00+00:00", 78.0),
+            HealthMeasurement("maria", "steps", 1200.0, "2026-07-15T09:00:00+00:00"),
+            HealthMeasurement("maria", "steps", 800.0, "2026-07-15T09:40:00+00:00"),
+            HealthMeasurement("maria", "sleep", 6.25, "2026-07-14T07:00:00+00:00"),
+            HealthMeasurement("ion", "heart_rate", 70.0, "2026-07-14T08:00:00+00:00"),
+        ]
+    )
+    return StoreHealth(store, lambda: TODAY)
+
+
+def test_today_is_the_latest_reading_or_the_day_total(health: StoreHealth) -> None:
+    assert health.latest("maria", "blood_pressure", "today") == {"systolic": 124, "diastolic": 78}
+    assert health.latest("maria", "steps", "today") == {"value": 2000}
+
+
+def test_past_days_are_daily_means_or_totals(health: StoreHealth) -> None:
+    assert health.latest("maria", "blood_pressure", "yesterday") == {
+        "systolic": 132,
+        "diastolic": 82,
+    }
+    assert health.latest("maria", "sleep", "2026-07-14") == {"value": 6.2}
+
+
+def test_no_answer_rather_than_a_wrong_one(health: StoreHealth) -> None:
+    assert health.latest("ion", "heart_rate", "today") is None  # only yesterday's reading
+    assert health.latest("maria", "heart_rate", "today") is None  # never measured
+    assert health.latest("maria", "steps", "tomorrow") is None
+    assert health.latest("maria", "health_status", "today") is None  # not in the store
+    assert health.latest("maria", "blood_pressure", "someday") is None
+
+
+CALENDAR = {
+    "timezone": "Europe/Bucharest",
+    "reminders": [
+        {"name": "medication", "kind": "medication", "user": "maria", "daily_at": "08:00"},
+        {"name": "evening_walk", "kind": "walk", "daily_at": "19:00"},
+        {"name": "ion_pills", "kind": "medication", "user": "ion", "daily_at": "09:00"},
+        {"name": "drink", "kind": "hydration", "every_s": 7200},
+    ],
+    "calendar": [
+        {"title": "physiotherapy", "at": "2026-07-15T16:30:00", "user": "maria"},
+        {"title": "family dinner", "at": "2026-07-15T12:00:00+00:00"},
+        {"title": "doctor", "at": "2026-07-16T00:30:00", "user": "maria"},
+        {"title": "dentist", "at": "2026-07-15T11:00:00", "user": "ion"},
+    ],
+}
+
+
+def test_the_agenda_of_a_day_in_the_homes_time_zone() -> None:
+    calendar = ConfiguredCalendar(parse(RemindersConfig, CALENDAR, "reminders"), SimClock())
+    assert calendar.events("maria", "today") == [
+        {"time": "08:00", "title": "medication"},
+        {"time": "15:00", "title": "family dinner"},  # 12:00 UTC is 15:00 in Bucharest
+        {"time": "16:30", "title": "physiotherapy"},
+        {"time": "19:00", "title": "evening walk"},
+    ]
+    tomorrow = calendar.events("maria", "tomorrow")
+    assert {"time": "00:30", "title": "doctor"} in tomorrow
+    assert "dentist" not in str(calendar.events("maria", "today"))
+    assert calendar.events("maria", "in a while") == []
+
+
+def test_device_commands_go_on_the_bus_and_unknown_ones_are_refused() -> None:
+    bus = Bus()
+    sent = bus.subscribe(DEVICE_COMMAND_TOPIC, DeviceCommand, lambda _: None)
+    control = BusDeviceControl(
+        bus.publisher(DEVICE_COMMAND_TOPIC, DeviceCommand), "flat", ["kitchen"]
+    )
+    assert control.set("kitchen", "lights", "on")
+    assert not control.set("garage", "lights", "on")
+    assert not control.set("kitchen", "blinds", "on")  # blinds open or close
+    assert not control.set("kitchen", "oven", "on")
+    assert list(sent.queue) == [DeviceCommand("flat", "kitchen", "lights", "on")]
