@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+import argparse
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
+from typing import get_args
 
 import pytest
 
 from amiro import __version__
-from amiro.cli import main
+from amiro.behavior.planning.cli import ENGINES
+from amiro.cli import build_parser, main
 
 
 def amiro(*args: str) -> subprocess.CompletedProcess[str]:
@@ -29,14 +33,71 @@ def test_version(capsys: pytest.CaptureFixture[str]) -> None:
     assert capsys.readouterr().out.strip() == f"amiro {__version__}"
 
 
-@pytest.mark.parametrize(
-    "command", [[], ["run"], ["run", "hydration"], ["bench"], ["bench", "core"]]
-)
+def command_paths(parser: argparse.ArgumentParser) -> Iterator[list[str]]:
+    """Every command and subcommand of ``parser``, as the words that name it."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, child in action.choices.items():
+                yield [name]
+                yield from ([name, *rest] for rest in command_paths(child))
+
+
+COMMANDS = list(command_paths(build_parser()))
+
+
+def test_the_walk_finds_the_nested_commands() -> None:
+    assert ["run", "hydration"] in COMMANDS
+    assert ["plan", "pddl"] in COMMANDS
+    assert ["serve"] in COMMANDS
+
+
+@pytest.mark.parametrize("command", [[], *COMMANDS], ids=" ".join)
 def test_every_command_has_help(command: list[str], capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as exc:
         main([*command, "--help"])
     assert exc.value.code == 0
-    assert "usage: amiro" in capsys.readouterr().out
+    assert f"usage: {' '.join(['amiro', *command])}" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("group", ["run", "plan", "nlu", "env", "ros2", "robot", "bench"])
+def test_a_group_alone_prints_its_help_and_exits_2(
+    group: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main([group]) == 2
+    assert capsys.readouterr().out.startswith(f"usage: amiro {group} ")
+
+
+@pytest.fixture(scope="module")
+def loaded_by_help() -> set[str]:
+    """The top-level packages loaded by building the whole parser, in a fresh interpreter."""
+    script = "import sys, amiro.cli; amiro.cli.build_parser(); print(' '.join(sys.modules))"
+    proc = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=True
+    )
+    return {name.split(".")[0] for name in proc.stdout.split()}
+
+
+@pytest.mark.parametrize(
+    "heavy",
+    [
+        "sklearn",
+        "unified_planning",
+        "fastapi",
+        "rclpy",
+        "onnxruntime",
+        "torch",
+        "cv2",
+    ],
+)
+def test_help_does_not_import_heavy_packages(heavy: str, loaded_by_help: set[str]) -> None:
+    assert "amiro" in loaded_by_help
+    assert heavy not in loaded_by_help
+
+
+def test_delivery_engines_are_the_planners() -> None:
+    from amiro.behavior.planning.planner import Engine
+
+    assert get_args(Engine) == ENGINES
 
 
 def one_line_error(proc: subprocess.CompletedProcess[str]) -> str:

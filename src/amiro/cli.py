@@ -2,6 +2,8 @@
 
 Every command has ``--help``; with ``--json`` it prints exactly one JSON object on stdout
 (logs go to stderr).  Bad input exits with code 2 and one line on stderr, no traceback.
+Building the parser imports only the packages' ``cli.py`` files, which keep their heavy
+imports inside the handlers, so ``amiro --help`` answers at once.
 """
 
 from __future__ import annotations
@@ -9,17 +11,11 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 from amiro import __version__
-from amiro.core.config import ConfigError
-
-Command = Callable[[argparse.Namespace], int]
-
-
-class UsageError(ConfigError):
-    """Bad command-line input: reported in one line, exit code 2."""
+from amiro.cli_support import Handler
 
 
 class _Parser(argparse.ArgumentParser):
@@ -71,10 +67,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         format="%(levelname)s %(name)s: %(message)s",
         stream=sys.stderr,
     )
-    handler: Command | None = getattr(args, "handler", None)
+    handler: Handler | None = getattr(args, "handler", None)
     if handler is None:
         parser.print_help()
         return 2
+    from amiro.core.config import ConfigError  # pydantic: loaded only once a command runs
+
     try:
         return handler(args)
     except ConfigError as exc:

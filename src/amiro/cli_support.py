@@ -1,4 +1,8 @@
-"""Small helpers shared by the command-line entry points."""
+"""Small helpers shared by the command-line entry points.
+
+They import nothing heavy: ``amiro --help`` builds every command's parser, so a ``cli.py``
+keeps its module level to argparse and these helpers, and imports its work in the handlers.
+"""
 
 from __future__ import annotations
 
@@ -7,13 +11,61 @@ import dataclasses
 import json
 import math
 import sys
-from typing import Any
+from collections.abc import Callable
+from functools import partial
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from typing import TypeAlias
+
+    Subcommands: TypeAlias = argparse._SubParsersAction[Any]  # of the CLI's parser class
+
+Handler = Callable[[argparse.Namespace], int]
 
 
 def add_json_flag(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--json", action="store_true", help="print exactly one JSON object on stdout"
     )
+
+
+def add_group(
+    sub: Subcommands, name: str, help: str, dest: str, metavar: str = "COMMAND"
+) -> Subcommands:
+    """A command made of subcommands (``amiro nlu parse``); alone it prints its help, exit 2."""
+    group: argparse.ArgumentParser = sub.add_parser(name, help=help)
+    group.set_defaults(handler=partial(_print_help, group))
+    return group.add_subparsers(dest=dest, metavar=metavar)
+
+
+def _print_help(parser: argparse.ArgumentParser, _args: argparse.Namespace) -> int:
+    parser.print_help()
+    return 2
+
+
+def add_command(
+    sub: Subcommands,
+    name: str,
+    handler: Handler,
+    help: str,
+    description: str | None = None,
+    with_json: bool = True,
+) -> argparse.ArgumentParser:
+    """A command that runs ``handler``; with ``with_json``, it takes the ``--json`` flag."""
+    parser: argparse.ArgumentParser = sub.add_parser(name, help=help, description=description)
+    parser.set_defaults(handler=handler)
+    if with_json:
+        add_json_flag(parser)
+    return parser
+
+
+def emit_report(args: argparse.Namespace, report: dict[str, Any], text: str) -> int:
+    """The report as one JSON object with ``--json``, else ``text`` for a person; exit 0."""
+    if args.json:
+        emit_json(report)
+    else:
+        print(text)
+    return 0
 
 
 def jsonable(value: Any) -> Any:

@@ -1,7 +1,8 @@
 """``amiro serve``: the whole system with the dashboard and, when configured, the MQTT bridge.
 
 The config file is a system config (``sim``, ``navigation``, ``environment``, ...) plus a
-``web`` section.  Without a file, the simulated apartment with Maria on the couch.
+``web`` section.  Without a file, the simulated apartment with Maria on the couch.  The
+functions import the system and the web stack when called, so ``amiro --help`` stays fast.
 """
 
 from __future__ import annotations
@@ -13,26 +14,24 @@ import signal
 import sys
 import threading
 from dataclasses import dataclass
-from types import FrameType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from fastapi import FastAPI
-from pydantic import SecretStr
+from amiro.cli_support import add_command
 
-from amiro.core.clock import Clock, SimClock
-from amiro.core.config import ConfigError, parse, read_yaml
-from amiro.core.runtime import Runtime
-from amiro.environment.config import EnvironmentConfig
-from amiro.environment.mqtt_bridge import MqttConfig, parse_url
-from amiro.scenarios.hydration import HydrationOptions, scenario_config
-from amiro.system import System, SystemConfig, build_system
-from amiro.web.api import Backend
-from amiro.web.app import create_app
-from amiro.web.auth import Authenticator, hash_password
-from amiro.web.chat import ChatPort, DialogueChat
-from amiro.web.config import WebConfig
-from amiro.web.gateway import GatewayNode
-from amiro.web.server import WebServer
+if TYPE_CHECKING:
+    from types import FrameType
+
+    from fastapi import FastAPI
+    from pydantic import SecretStr
+
+    from amiro.cli_support import Subcommands
+    from amiro.core.clock import Clock
+    from amiro.core.runtime import Runtime
+    from amiro.system import System, SystemConfig
+    from amiro.web.auth import Authenticator
+    from amiro.web.chat import ChatPort
+    from amiro.web.config import WebConfig
+    from amiro.web.gateway import GatewayNode
 
 
 @dataclass(frozen=True)
@@ -43,6 +42,11 @@ class ServeConfig:
 
 def load_serve_config(path: str | None, seed: int = 1) -> ServeConfig:
     """The file's sections, or the default household (Maria, no scripted heat wave)."""
+    from amiro.core.config import ConfigError, parse, read_yaml
+    from amiro.scenarios.hydration import HydrationOptions, scenario_config
+    from amiro.system import SystemConfig
+    from amiro.web.config import WebConfig
+
     if path is None:
         system = scenario_config(HydrationOptions(seed=seed))
         data: dict[str, Any] = system.model_dump(mode="json")
@@ -59,6 +63,10 @@ def load_serve_config(path: str | None, seed: int = 1) -> ServeConfig:
 
 def apply_flags(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
     """``--mqtt``, ``--home`` and ``--db`` override the system's environment section."""
+    from amiro.core.config import parse
+    from amiro.environment.config import EnvironmentConfig
+    from amiro.environment.mqtt_bridge import MqttConfig, parse_url
+
     env = cfg.system.environment
     if args.mqtt is not None:
         parse_url(args.mqtt)
@@ -78,6 +86,9 @@ def apply_flags(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
 
 
 def make_authenticator(web: WebConfig) -> Authenticator:
+    from amiro.core.config import ConfigError
+    from amiro.web.auth import Authenticator, hash_password
+
     password = web.admin_password or _secret_env("AMIRO_ADMIN_PASSWORD")
     if password is None or not password.get_secret_value():
         raise ConfigError("set the admin password in AMIRO_ADMIN_PASSWORD or web.admin_password")
@@ -92,6 +103,8 @@ def make_authenticator(web: WebConfig) -> Authenticator:
 
 
 def _secret_env(name: str) -> SecretStr | None:
+    from pydantic import SecretStr
+
     value = os.environ.get(name)
     return SecretStr(value) if value else None
 
@@ -113,6 +126,12 @@ class Served:
 def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Served:
     """The system, the gateway and the app (nothing started); the chat box talks to the
     system's dialogue manager unless another ``chat`` is given."""
+    from amiro.system import build_system
+    from amiro.web.api import Backend
+    from amiro.web.app import create_app
+    from amiro.web.chat import DialogueChat
+    from amiro.web.gateway import GatewayNode
+
     system = build_system(cfg.system, clock)
     gateway = system.runtime.add(GatewayNode(system))
     chat = chat or DialogueChat(system.dialogue.manager)
@@ -142,13 +161,16 @@ class RuntimeLoop:
         self.thread.join(timeout=10)
 
 
-def register(sub: Any) -> None:
-    p = sub.add_parser(
+def register(sub: Subcommands) -> None:
+    p = add_command(
+        sub,
         "serve",
+        _serve,
         help="the whole system with the web dashboard (and MQTT when a broker is given)",
         description="Runs the simulated home (or a configured robot), all modules, the web "
         "dashboard and, with --mqtt or environment.mqtt, the MQTT bridge. The admin "
         "password comes from AMIRO_ADMIN_PASSWORD or web.admin_password.",
+        with_json=False,
     )
     p.add_argument("--config", help="YAML system config with optional web: section")
     p.add_argument("--host", help="address to listen on (default 127.0.0.1)")
@@ -158,10 +180,13 @@ def register(sub: Any) -> None:
     p.add_argument("--db", help="health store URL (default: in memory)")
     p.add_argument("--speed", type=float, default=1.0, help="simulated s per real s (default 1)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
-    p.set_defaults(handler=_serve)
 
 
 def _serve(args: argparse.Namespace) -> int:
+    from amiro.core.clock import SimClock
+    from amiro.core.config import ConfigError
+    from amiro.web.server import WebServer
+
     if args.speed <= 0:
         raise ConfigError(f"--speed must be positive, got {args.speed}")
     if args.port is not None and not 0 <= args.port <= 65535:

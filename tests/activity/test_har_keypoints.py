@@ -2,6 +2,7 @@ import numpy as np
 import pytest
 
 from amiro.activity.keypoints import BLAZEPOSE_33, BODY_25, to_ntu
+from amiro.activity.render import body25_keypoints
 from amiro.activity.skeleton import J
 from amiro.core.config import ConfigError
 
@@ -13,19 +14,7 @@ def _ntu_pixels(frames: int = 3) -> np.ndarray:
 
 def _body25_from(ntu: np.ndarray) -> np.ndarray:
     """BODY_25 keypoints placed where the NTU joints are (ears/eyes/nose at the head)."""
-    source = {
-        "Nose": "Head", "Neck": "SpineShoulder", "MidHip": "SpineBase",
-        "REye": "Head", "LEye": "Head", "REar": "Head", "LEar": "Head",
-    }  # fmt: skip
-    for s, side in (("R", "Right"), ("L", "Left")):
-        for part in ("Shoulder", "Elbow", "Wrist", "Hip", "Knee", "Ankle"):
-            source[s + part] = part + side
-        for toe in ("BigToe", "SmallToe", "Heel"):
-            source[s + toe] = "Foot" + side
-    out = np.ones((len(ntu), len(BODY_25), 3))
-    for i, name in enumerate(BODY_25):
-        out[:, i, :2] = ntu[:, J[source[name]]]
-    return out
+    return body25_keypoints(ntu, 10_000, 10_000)
 
 
 def test_openpose_joints_land_on_their_ntu_places() -> None:

@@ -4,12 +4,12 @@ import pytest
 from amiro.activity.dataset import subject_body
 from amiro.activity.lifting import lift_frame, lift_sequence, nearest_in_time, resample
 from amiro.activity.motion import View, perform, to_camera
+from amiro.activity.render import depth_image, project
 from amiro.activity.skeleton import J
 from amiro.core.config import ConfigError
 from amiro.sim.camera import Camera
 
-CAMERA = Camera()
-INFO = CAMERA.info(0.0)
+INFO = Camera().info(0.0)
 
 
 def _skeletons() -> np.ndarray:
@@ -18,17 +18,9 @@ def _skeletons() -> np.ndarray:
     return to_camera(body_frames, View(distance=3.0, height=1.0))
 
 
-def _render(joints: np.ndarray, scale: float, wall: float = 6.0) -> tuple[np.ndarray, np.ndarray]:
-    """Pixels of Kinect-space joints, and a depth image (``scale`` x RGB resolution) holding
-    each joint's depth in a small square around it in front of a wall."""
-    optical = joints * np.array([-1.0, -1.0, 1.0])
-    pixels = CAMERA.project(optical)
-    h, w = round(INFO.height * scale), round(INFO.width * scale)
-    depth = np.full((h, w), wall)
-    for (u, v), z in sorted(zip(pixels, optical[:, 2], strict=True), key=lambda p: -p[1]):
-        c, r = int(u * scale), int(v * scale)
-        depth[max(r - 3, 0) : r + 4, max(c - 3, 0) : c + 4] = z
-    return pixels, depth
+def _render(joints: np.ndarray, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pixels of Kinect-space joints, and the depth image (``scale`` x RGB resolution)."""
+    return project(joints, INFO), depth_image(joints, INFO, scale)
 
 
 @pytest.mark.parametrize("scale", [1.0, 0.5])

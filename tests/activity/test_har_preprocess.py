@@ -83,7 +83,11 @@ def _drink_and_sneeze_cues(action: str, rng: np.random.Generator) -> tuple[float
     )
     behind_neck = head[:, 2] - frames[:, J["Neck"], 2]  # body frame: z points behind
     forward_speed = float((-np.diff(head[:, 2]) * FPS).max())
-    return float((near < 0.25).sum() / FPS), float(behind_neck.max() - behind_neck[0]), forward_speed
+    return (
+        float((near < 0.25).sum() / FPS),
+        float(behind_neck.max() - behind_neck[0]),
+        forward_speed,
+    )
 
 
 def test_drinking_holds_the_cup_head_back_and_sneezing_jerks_forward_briefly() -> None:

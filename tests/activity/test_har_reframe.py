@@ -47,6 +47,10 @@ class Odometry:
     def pose(self) -> Pose2D:
         return self.sim.robot.true_pose
 
+    @property
+    def velocity(self) -> tuple[float, float, float]:
+        return self.sim.robot.base.velocity
+
 
 def _recognise(
     distance: float, box_range: tuple[float, float], complete: bool = True

@@ -72,10 +72,12 @@ def test_the_stream_advances_with_simulated_time_at_the_model_rate() -> None:
 
 def test_after_a_fall_the_person_lies_still_and_unseen_people_give_nothing() -> None:
     runtime, sim, camera = _scene(3.4)
+    standing = camera.window("maria", 1)  # watched while idle, then she falls
     sim.residents.residents["maria"].activity = "falling"
-    camera.window("maria", 1)
     runtime.spin_for(6.0)
     frames = camera.window("maria", 10)
-    assert frames is not None
+    assert standing is not None and frames is not None
     np.testing.assert_array_equal(frames[0], frames[-1])
+    highest_seen = np.nanmax(frames[-1, :, 1])  # the head may have fallen out of the image
+    assert standing[0, J["Head"], 1] - highest_seen > 1.0
     assert camera.window("nobody", 10) is None and camera.framing("nobody") is None

@@ -41,8 +41,11 @@ def recordings(tmp_path_factory: pytest.TempPathFactory, espeak: EspeakSynthesiz
     for text in COMMANDS:
         name = text.replace(" ", "_") + ".wav"
         write_wav(clean / name, espeak.synthesize(text, "en", "en-us", 140))
-        noise = f"|sox {clean / name} -p synth whitenoise vol 0.02"
-        subprocess.run(["sox", "-m", str(clean / name), noise, str(noisy / name)], check=True)
+        # -R: sox's repeatable mode, so the noise (and the test) is the same on every run
+        noise = f"|sox -R {clean / name} -p synth whitenoise vol 0.02"
+        subprocess.run(
+            ["sox", "-R", "-m", str(clean / name), noise, str(noisy / name)], check=True
+        )
     return clean
 
 

@@ -5,18 +5,22 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
-from amiro.cli_support import add_json_flag, emit_json
-from amiro.core.config import ConfigError
+from amiro.cli_support import add_command, add_group, emit_json
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    har = sub.add_parser("har", help="human activity recognition: train, evaluate, bench, read")
-    cmds = har.add_subparsers(dest="har_command", metavar="COMMAND")
-
-    train = cmds.add_parser(
+def register(sub: Subcommands) -> None:
+    cmds = add_group(
+        sub, "har", "human activity recognition: train, evaluate, bench, read", "har_command"
+    )
+    train = add_command(
+        cmds,
         "train",
+        _train,
         help="train the multi-stage LSTM on synthetic motion and export ONNX (needs torch)",
     )
     train.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
@@ -26,49 +30,44 @@ def register(sub: Any) -> None:
     train.add_argument("--hidden", type=int, default=64, help="LSTM and feature width")
     train.add_argument("--per-cell", type=int, default=6, help="windows per subject/view/action")
     train.add_argument("--max-steps", type=int, help="stop after this many optimiser steps")
-    add_json_flag(train)
-    train.set_defaults(handler=_train)
 
-    export = cmds.add_parser("export", help="export a training checkpoint to ONNX (needs torch)")
+    export = add_command(
+        cmds, "export", _export, help="export a training checkpoint to ONNX (needs torch)"
+    )
     export.add_argument("checkpoint", type=Path)
     export.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
-    add_json_flag(export)
-    export.set_defaults(handler=_export)
 
-    evaluate = cmds.add_parser(
-        "evaluate", help="accuracy: cross-subject, cross-view, confusion, missing joints"
+    evaluate = add_command(
+        cmds,
+        "evaluate",
+        _evaluate,
+        help="accuracy: cross-subject, cross-view, confusion, missing joints",
     )
     evaluate.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
     evaluate.add_argument("--ntu", type=Path, help="a folder of NTU RGB+D .skeleton files")
     evaluate.add_argument("--seed", type=int, default=1000)
-    add_json_flag(evaluate)
-    evaluate.set_defaults(handler=_evaluate)
 
-    read = cmds.add_parser("read", help="parse one NTU RGB+D .skeleton file")
+    read = add_command(cmds, "read", _read, help="parse one NTU RGB+D .skeleton file")
     read.add_argument("file", type=Path)
-    add_json_flag(read)
-    read.set_defaults(handler=_read)
 
-    bench = cmds.add_parser("bench", help="inference time, preprocessing included (Table 16)")
+    bench = add_command(
+        cmds, "bench", _bench, help="inference time, preprocessing included (Table 16)"
+    )
     bench.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
     bench.add_argument("--iterations", type=int, default=200, help="calls per round")
     bench.add_argument("--repeats", type=int, default=7, help="rounds; the median is reported")
-    add_json_flag(bench)
-    bench.set_defaults(handler=_bench)
-
-    def _no_command(args: argparse.Namespace) -> int:
-        har.print_help()
-        return 2
-
-    har.set_defaults(handler=_no_command)
 
 
 def _positive(value: int | None, name: str) -> None:
+    from amiro.core.config import ConfigError
+
     if value is not None and value <= 0:
         raise ConfigError(f"{name} must be positive, got {value}")
 
 
 def _train(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+
     for name in ("epochs", "hidden", "per_cell", "max_steps"):
         _positive(getattr(args, name), "--" + name.replace("_", "-"))
     try:
@@ -96,6 +95,8 @@ def _train(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+
     if not args.checkpoint.is_file():
         raise ConfigError(f"{args.checkpoint}: no such file")
     try:

@@ -43,10 +43,8 @@ SEGMENT = ROOT_DISTANCE - ROOT_DISTANCE[PARENT_OR_SELF]
 
 
 def _anchors(seen: BoolArray) -> tuple[IntArray, FloatArray]:
-    """Per frame and joint, the deepest seen ancestor and the standard distance to it.
-
-    A whole skeleton (the common case) hangs every joint from its parent; only frames
-    with missing joints pay for the ancestor search."""
+    """Per frame and joint, the deepest seen ancestor and the standard distance to it
+    (the parent in frames where every joint was seen)."""
     anchor = np.broadcast_to(PARENT_OR_SELF, seen.shape).copy()
     partial = ~seen.all(axis=1)
     if partial.any():
@@ -58,24 +56,30 @@ def _anchors(seen: BoolArray) -> tuple[IntArray, FloatArray]:
 
 
 def _bones(frames: FloatArray) -> tuple[FloatArray, BoolArray]:
-    """Bone-normalised positions (0 where unseen) and which joints were seen."""
+    """Bone-normalised positions (0 where unseen) and which joints were seen.
+
+    A whole skeleton (the common case) hangs every joint from its parent; only skeletons
+    with missing joints pay for the ancestor search and the masking."""
     seen = visible(frames)
-    pos = np.where(seen[..., None], frames, 0.0)
-    counts = seen.sum(axis=1)
-    no_root = ~seen[:, 0] & (counts > 0)
-    if no_root.any():  # the root stands in at the centroid of what was seen
-        pos[no_root, 0] = pos[no_root].sum(axis=1) / counts[no_root, None]
-    if seen.all():
+    whole = bool(seen.all())
+    if whole:
+        pos = frames
         vec = pos - pos[:, PARENT_OR_SELF]
         target: FloatArray = SEGMENT
     else:
+        pos = np.where(seen[..., None], frames, 0.0)
+        counts = seen.sum(axis=1)
+        no_root = ~seen[:, 0] & (counts > 0)
+        if no_root.any():  # the root stands in at the centroid of what was seen
+            pos[no_root, 0] = pos[no_root].sum(axis=1) / counts[no_root, None]
         anchor, target = _anchors(seen)
         vec = pos - np.take_along_axis(pos, anchor[..., None], axis=1)
-    length = np.sqrt(np.einsum("tjc,tjc->tj", vec, vec))
-    scale = np.where(seen, target / np.maximum(length, 1e-6), 0.0)
-    scale[:, 0] = 0.0
+    scale = target / np.maximum(np.sqrt(np.einsum("tjc,tjc->tj", vec, vec)), 1e-6)
+    if not whole:
+        scale *= seen
     out: FloatArray = pos[:, :1] + np.matmul(PATH, vec * scale[..., None])
-    out *= seen[..., None]
+    if not whole:
+        out *= seen[..., None]
     return out, seen
 
 
@@ -95,17 +99,24 @@ class ViewFrame:
 
     @staticmethod
     def of(frame: FloatArray) -> ViewFrame:
-        """The view frame of one (bone-normalised) skeleton, from its hips or shoulders."""
+        """The view frame of one (bone-normalised) skeleton, from its hips and shoulders."""
         origin = frame[J["SpineBase"]]
         if np.isnan(origin).any():
             seen = frame[visible(frame[None])[0]]
             origin = seen.mean(axis=0) if len(seen) else np.zeros(3)
-        yaw = 0.0
+        # The body's left-right axis from shoulders and hips together: a lifted hip often
+        # takes the depth of the hand or thigh in front of it, and the 0.34 m shoulder
+        # baseline outweighs the 0.16 m hip one.
+        across = np.zeros(3)
         for left, right in (("HipLeft", "HipRight"), ("ShoulderLeft", "ShoulderRight")):
-            across = frame[J[right]] - frame[J[left]]
-            if not np.isnan(across).any() and np.hypot(across[0], across[2]) > 1e-6:
-                yaw = float(np.arctan2(across[2], across[0]))
-                break
+            pair = frame[J[right]] - frame[J[left]]
+            if not np.isnan(pair).any():
+                across += pair
+        yaw = (
+            float(np.arctan2(across[2], across[0]))
+            if np.hypot(across[0], across[2]) > 1e-6
+            else 0.0
+        )
         c, s = np.cos(yaw), np.sin(yaw)
         # Rotation about the vertical (y) axis taking the across vector onto +x.
         rotation = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
@@ -129,12 +140,6 @@ def _features(coords: FloatArray, seen: BoolArray) -> npt.NDArray[np.float32]:
     return out
 
 
-def features(normalised: FloatArray) -> npt.NDArray[np.float32]:
-    """Model input per frame of view-normalised skeletons (NaN = unseen), float32."""
-    seen = visible(normalised)
-    return _features(np.nan_to_num(normalised), seen)
-
-
 def preprocess(frames: FloatArray) -> npt.NDArray[np.float32]:
     """A raw skeleton sequence to model features, the view taken from its first frame."""
     pos, seen = _bones(frames)
@@ -145,11 +150,12 @@ def preprocess_batch(frames: FloatArray) -> npt.NDArray[np.float32]:
     """:func:`preprocess` over ``(batch, frames, 25, 3)``, in one pass over all frames."""
     b, t = frames.shape[:2]
     pos, seen = _bones(frames.reshape(b * t, *frames.shape[2:]))
-    pos, seen = pos.reshape(frames.shape), seen.reshape(b, t, NUM_JOINTS)
+    pos, seen = pos.reshape(b, t, NUM_JOINTS, 3), seen.reshape(b, t, NUM_JOINTS)
     views = [ViewFrame.of_bones(pos[i, 0], seen[i, 0]) for i in range(b)]
-    origins = np.stack([v.origin for v in views])[:, None, None]
-    rotations = np.stack([v.rotation.T for v in views])[:, None]
-    return _features((pos - origins) @ rotations, seen)
+    origins = np.stack([v.origin for v in views])[:, None, :]
+    rotations = np.stack([v.rotation.T for v in views])
+    coords = np.matmul(pos.reshape(b, t * NUM_JOINTS, 3) - origins, rotations)
+    return _features(coords.reshape(pos.shape), seen)
 
 
 def view_features(view: ViewFrame, frames: FloatArray) -> npt.NDArray[np.float32]:

@@ -83,5 +83,5 @@ ROOT_DISTANCE = PATH @ np.array(SEGMENT_LENGTH)
 
 def visible(frames: FloatArray) -> BoolArray:
     """Which joints of each frame were seen: ``(frames, 25)``."""
-    seen: BoolArray = np.asarray(~np.isnan(frames).any(axis=-1))
+    seen: BoolArray = ~np.isnan(frames.sum(axis=-1))  # one NaN coordinate makes the sum NaN
     return seen

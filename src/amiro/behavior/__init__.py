@@ -1,18 +1,42 @@
-"""Behaviour composition: task graphs, their YAML form, the engine and event handlers."""
+"""Behaviour composition: task graphs, their YAML form, the engine and event handlers.
 
-from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, EngineConfig, GraphRun, RunStatus
-from amiro.behavior.graph import COMPLETED, FAILED, Edge, End, TaskGraph, TaskNode
-from amiro.behavior.handlers import HandlerError, HandlerFactory, HandlerRegistry, yaml_handler
-from amiro.behavior.loader import load_behavior, load_behavior_data, loads_behavior
-from amiro.behavior.task import (
-    Task,
-    TaskContext,
-    TaskError,
-    TaskRecord,
-    TaskStatus,
-    make_task,
-    task_types,
-)
+The names below load their submodule on first use (PEP 562), so importing a subpackage such
+as ``amiro.behavior.planning.cli`` (``amiro --help``) does not load the engine.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from amiro.core.lazy import lazy_getattr
+
+if TYPE_CHECKING:
+    from amiro.behavior.engine import (
+        EVENTS_TOPIC,
+        BehaviorEngine,
+        EngineConfig,
+        GraphRun,
+        RunStatus,
+    )
+    from amiro.behavior.graph import COMPLETED, FAILED, Edge, End, TaskGraph, TaskNode
+    from amiro.behavior.handlers import (
+        HandlerError,
+        HandlerFactory,
+        HandlerRegistry,
+        yaml_handler,
+    )
+    from amiro.behavior.loader import load_behavior, load_behavior_data, loads_behavior
+    from amiro.behavior.task import (
+        Task,
+        TaskContext,
+        TaskError,
+        TaskRecord,
+        TaskStatus,
+        make_task,
+        task_types,
+    )
+
+_SUBMODULES = ("engine", "graph", "handlers", "loader", "task")
 
 __all__ = [
     "COMPLETED",
@@ -41,3 +65,6 @@ __all__ = [
     "task_types",
     "yaml_handler",
 ]
+
+
+__getattr__ = lazy_getattr(__name__, __all__, _SUBMODULES)

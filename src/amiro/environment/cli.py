@@ -3,32 +3,27 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING
 
-from amiro.cli_support import add_json_flag, emit_json
+from amiro.cli_support import add_command, add_group, emit_report
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    env = sub.add_parser("env", help="smart environment and health data")
-    kinds = env.add_subparsers(dest="env_command", metavar="WHAT")
-    imp = kinds.add_parser("import", help="import health measurements from CSV or JSON")
+def register(sub: Subcommands) -> None:
+    kinds = add_group(sub, "env", "smart environment and health data", "env_command", "WHAT")
+    imp = add_command(kinds, "import", _import, help="import health measurements from CSV or JSON")
     imp.add_argument("file", help="a .csv or .json file (see docs/environment.md)")
     imp.add_argument("--db", required=True, help="SQLAlchemy URL, e.g. sqlite:///amiro.db")
-    add_json_flag(imp)
-    imp.set_defaults(handler=_import)
-    bench = kinds.add_parser(
-        "bench", help="MQTT msgs/s through the bridge, web API req/s, health queries/s"
+    bench = add_command(
+        kinds,
+        "bench",
+        _bench,
+        help="MQTT msgs/s through the bridge, web API req/s, health queries/s",
     )
     bench.add_argument("--mqtt", help="broker as mqtt://HOST:PORT (else MQTT is skipped)")
     bench.add_argument("--users", type=int, default=20, help="users with a year of data")
-    add_json_flag(bench)
-    bench.set_defaults(handler=_bench)
-
-    def _no_kind(args: argparse.Namespace) -> int:
-        env.print_help()
-        return 2
-
-    env.set_defaults(handler=_no_kind)
 
 
 def _import(args: argparse.Namespace) -> int:
@@ -38,11 +33,8 @@ def _import(args: argparse.Namespace) -> int:
     store = HealthStore(args.db)
     count = import_file(store, args.file)
     store.close()
-    if args.json:
-        emit_json({"imported": count, "file": args.file})
-    else:
-        print(f"imported {count} measurements from {args.file}")
-    return 0
+    report = {"imported": count, "file": args.file}
+    return emit_report(args, report, f"imported {count} measurements from {args.file}")
 
 
 def _bench(args: argparse.Namespace) -> int:
@@ -55,9 +47,4 @@ def _bench(args: argparse.Namespace) -> int:
     if args.mqtt:
         parse_url(args.mqtt)
     result = bench_env(args.mqtt, args.users)
-    if args.json:
-        emit_json(result)
-    else:
-        for key, value in result.items():
-            print(f"{key:24s} {value}")
-    return 0
+    return emit_report(args, result, "\n".join(f"{k:24s} {v}" for k, v in result.items()))

@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from amiro.core.config import ConfigError
+from amiro.core.config import ConfigError, read_text
 from amiro.environment.health_store import HealthStore
 from amiro.environment.messages import HealthMeasurement
 from amiro.environment.payloads import NAME, PayloadError, health_measurement
@@ -45,12 +45,7 @@ def _row(record: Any, where: str) -> HealthMeasurement:
 
 def read_measurements(path: str | Path) -> list[HealthMeasurement]:
     p = Path(path)
-    if not p.is_file():
-        raise ConfigError(f"{p}: no such file")
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{p}: cannot read: {exc}") from None
+    text = read_text(p)
     if p.suffix.lower() == ".csv":
         reader = csv.DictReader(text.splitlines())
         return [_row(rec, f"{p}: line {i}") for i, rec in enumerate(reader, start=2)]

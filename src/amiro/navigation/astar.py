@@ -11,10 +11,14 @@ import math
 
 import numba
 import numpy as np
+import numpy.typing as npt
 
 from amiro.navigation.costmap import BoolGrid, FloatGrid
 
 Cell = tuple[int, int]
+IntArray = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
+FloatArray = npt.NDArray[np.float64]
 
 _DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 _DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
@@ -49,11 +53,11 @@ def astar(
 
 
 @numba.njit(cache=True)
-def _box_octile(r: int, c: int, box: np.ndarray) -> float:  # type: ignore[type-arg]
+def _box_octile(r: int, c: int, box: IntArray) -> float:
     """Octile distance to the goals' bounding box: admissible and consistent for any goal set."""
     dr = max(box[0] - r, 0, r - box[1])
     dc = max(box[2] - c, 0, c - box[3])
-    return max(dr, dc) + (math.sqrt(2.0) - 1.0) * min(dr, dc)
+    return float(max(dr, dc) + (math.sqrt(2.0) - 1.0) * min(dr, dc))
 
 
 @numba.njit(cache=True, inline="always")
@@ -64,14 +68,14 @@ def _before(fa: float, ga: float, fb: float, gb: float) -> bool:
 
 @numba.njit(cache=True)
 def _search(
-    blocked: np.ndarray,  # type: ignore[type-arg]
-    step_cost: np.ndarray,  # type: ignore[type-arg]
+    blocked: BoolArray,
+    step_cost: FloatArray,
     h: int,
     w: int,
     start: int,
-    goal_mask: np.ndarray,  # type: ignore[type-arg]
-    box: np.ndarray,  # type: ignore[type-arg]
-) -> np.ndarray:  # type: ignore[type-arg]
+    goal_mask: BoolArray,
+    box: IntArray,
+) -> IntArray:
     """Flat indices of the path (empty when unreachable).
 
     The open set is a binary heap over preallocated arrays with decrease-key: ``slot`` holds
@@ -149,7 +153,7 @@ def _search(
 
 
 @numba.njit(cache=True)
-def _trace(parent: np.ndarray, cell: int) -> np.ndarray:  # type: ignore[type-arg]
+def _trace(parent: IntArray, cell: int) -> IntArray:
     """The path from the start to ``cell`` by following parents back."""
     length = 1
     at = cell

@@ -4,46 +4,43 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+from amiro.cli_support import add_command, add_group, emit_json
 
-from amiro.cli_support import add_json_flag, emit_json
-from amiro.core.config import ConfigError
-from amiro.core.gridmap import load_map
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    nav = sub.add_parser("nav", help="navigation evaluations and speed benchmarks")
-    nav_sub = nav.add_subparsers(dest="nav_command", metavar="COMMAND")
-    bm = nav_sub.add_parser("benchmark", help="random feasible start/goal pairs on a map")
+def register(sub: Subcommands) -> None:
+    nav_sub = add_group(
+        sub, "nav", "navigation evaluations and speed benchmarks", dest="nav_command"
+    )
+    bm = add_command(
+        nav_sub, "benchmark", _benchmark, help="random feasible start/goal pairs on a map"
+    )
     bm.add_argument("--map", required=True, help="ROS map_server YAML (PGM or PNG image)")
     bm.add_argument("--trials", type=int, default=20)
     bm.add_argument("--seed", type=int, default=0)
-    add_json_flag(bm)
-    bm.set_defaults(handler=_benchmark)
-    exp = nav_sub.add_parser("experiments", help="the paper's section-4.3 experiments")
+    exp = add_command(
+        nav_sub, "experiments", _experiments, help="the paper's section-4.3 experiments"
+    )
     exp.add_argument("--runs", type=int, default=5, help="runs per experiment (seeds)")
     exp.add_argument("--seed", type=int, default=0)
     exp.add_argument(
         "--max-speed", type=float, default=0.45, help="m/s, up to Pepper's 0.55 (default 0.45)"
     )
-    add_json_flag(exp)
-    exp.set_defaults(handler=_experiments)
-    bench = nav_sub.add_parser("bench", help="per-cycle speed: A*, DWA, SLAM, AMCL")
+    bench = add_command(nav_sub, "bench", _bench, help="per-cycle speed: A*, DWA, SLAM, AMCL")
     bench.add_argument("--seed", type=int, default=0)
-    add_json_flag(bench)
-    bench.set_defaults(handler=_bench)
 
-    slam = sub.add_parser("slam", help="2D lidar SLAM")
-    slam_sub = slam.add_subparsers(dest="slam_command", metavar="COMMAND")
-    run = slam_sub.add_parser("run", help="SLAM over a CARMEN log, scored against its reference")
+    slam_sub = add_group(sub, "slam", "2D lidar SLAM", dest="slam_command")
+    run = add_command(
+        slam_sub, "run", _slam_run, help="SLAM over a CARMEN log, scored against its reference"
+    )
     run.add_argument("--carmen", required=True, help="CARMEN log (FLASER and ODOM lines)")
     run.add_argument("--out", default="slam_out", help="directory for map and trajectory")
     run.add_argument("--fov-deg", type=float, default=180.0, help="laser field of view")
     run.add_argument("--max-range", type=float, default=12.0, help="ignore returns beyond (m)")
-    add_json_flag(run)
-    run.set_defaults(handler=_slam_run)
 
 
 def _print(result: dict[str, Any], as_json: bool) -> None:
@@ -55,6 +52,10 @@ def _print(result: dict[str, Any], as_json: bool) -> None:
 
 
 def _benchmark(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from amiro.core.config import ConfigError
+    from amiro.core.gridmap import load_map
     from amiro.navigation.benchmark import run_benchmark
 
     if args.trials < 1:
@@ -65,6 +66,7 @@ def _benchmark(args: argparse.Namespace) -> int:
 
 
 def _experiments(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
     from amiro.navigation.experiments import PEPPER_MAX_SPEED, format_table, run_experiments
 
     if args.runs < 1:
@@ -80,6 +82,8 @@ def _experiments(args: argparse.Namespace) -> int:
 
 
 def _bench(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from amiro.navigation.bench import run_bench
 
     _print(run_bench(np.random.default_rng(args.seed)), args.json)

@@ -23,9 +23,18 @@ class LogOddsGrid:
     """A square-celled log-odds grid with its lower-left corner at ``origin`` (map frame)."""
 
     def __init__(
-        self, width_m: float, height_m: float, resolution: float, origin: tuple[float, float]
+        self,
+        width_m: float,
+        height_m: float,
+        resolution: float,
+        origin: tuple[float, float],
+        free_margin: float = 0.0,
     ) -> None:
         self.resolution = resolution
+        # beams are free only up to this fraction of their length short of the hit (at least
+        # a cell): with range noise, beams that overshoot would otherwise erase the near face
+        # of walls seen from afar, and the map (then the pose) would slide along corridors
+        self.free_margin = free_margin
         self.origin = origin
         shape = (round(height_m / resolution), round(width_m / resolution))
         self.logodds = np.zeros(shape, np.float32)
@@ -48,17 +57,20 @@ class LogOddsGrid:
             return
         n = int(np.ceil(lengths.max() / res))
         t = (np.arange(n) + 0.5) / max(n, 1)
-        keep = t[None, :] * lengths[:, None] < lengths[:, None] - res  # stop a cell short
+        short = np.maximum(res, self.free_margin * lengths)[:, None]
+        keep = t[None, :] * lengths[:, None] < lengths[:, None] - short  # stop short of the hit
         fx = (x + t[None, :] * (hx - x)[:, None])[keep]
         fy = (y + t[None, :] * (hy - y)[:, None])[keep]
         flat = self.logodds.reshape(-1)
         free, inside = self._cells(fx, fy)
-        free = np.unique(free[inside])
+        free = free[inside]
         occ, inside = self._cells(hx, hy)
-        occ = np.unique(occ[inside])
-        free = np.setdiff1d(free, occ, assume_unique=True)
+        occ = occ[inside]
+        # repeated indices all write the same value, so no de-duplication is needed; a cell
+        # both crossed and hit this scan takes only the hit (from its value before the scan)
+        occ_before = flat[occ]
         flat[free] = np.maximum(flat[free] + L_FREE, -L_CLAMP)
-        flat[occ] = np.minimum(flat[occ] + L_OCC, L_CLAMP)
+        flat[occ] = np.minimum(occ_before + L_OCC, L_CLAMP)
         changed = np.concatenate((free, occ))
         self.prob.reshape(-1)[changed] = 1.0 - 1.0 / (1.0 + np.exp(flat[changed]))
 

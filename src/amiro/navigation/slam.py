@@ -34,6 +34,7 @@ class SlamParams:
     update_min_d: float = 0.1  # map update only after this much motion (m / rad)
     update_min_a: float = 0.1
     odom_weight: float = 20.0  # prior strength on the odometry guess (per level, scaled)
+    free_margin: float = 0.03  # 3 sigma of the lidar's range noise (1 % of the range)
 
 
 class HectorSlam:
@@ -45,7 +46,8 @@ class HectorSlam:
         half = p.size_m / 2.0
         origin = (self.pose.x - half, self.pose.y - half)
         self.levels = [
-            LogOddsGrid(p.size_m, p.size_m, p.resolution * 2**k, origin) for k in range(p.levels)
+            LogOddsGrid(p.size_m, p.size_m, p.resolution * 2**k, origin, p.free_margin)
+            for k in range(p.levels)
         ]
         self._last_odom: Pose2D | None = None
         self._last_map_pose: Pose2D | None = None
@@ -89,20 +91,36 @@ class HectorSlam:
         self._last_map_pose = self.pose
 
     def _match(self, px: FloatArray, py: FloatArray, guess: Pose2D, use_prior: bool) -> Pose2D:
-        xi = np.array([guess.x, guess.y, guess.theta])
-        prior = xi.copy()
-        for grid in reversed(self.levels):
-            prob = grid.prob
-            weight = self.params.odom_weight * grid.resolution if use_prior else 0.0
-            for _ in range(self.params.iterations):
-                step = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
-                xi = xi + step
-                if abs(step[0]) + abs(step[1]) < 1e-4 and abs(step[2]) < 1e-4:
-                    break
-        return Pose2D(float(xi[0]), float(xi[1]), wrap_angle(float(xi[2])))
+        p = self.params
+        weight = p.odom_weight if use_prior else 0.0
+        return match_scan(self.levels, px, py, guess, weight, p.iterations)
 
     def map(self) -> GridMap:
         return self.levels[0].to_gridmap()
+
+
+def match_scan(
+    levels: list[LogOddsGrid],
+    px: FloatArray,
+    py: FloatArray,
+    guess: Pose2D,
+    prior_weight: float,
+    iterations: int,
+) -> Pose2D:
+    """Hector's multi-resolution scan-to-map match: Gauss-Newton on each grid of ``levels``
+    (finest first in the list), coarsest first; ``prior_weight`` (per metre of cell size)
+    pulls towards ``guess``."""
+    xi = np.array([guess.x, guess.y, guess.theta])
+    prior = xi.copy()
+    for grid in reversed(levels):
+        prob = grid.prob
+        weight = prior_weight * grid.resolution
+        for _ in range(iterations):
+            step = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
+            xi = xi + step
+            if abs(step[0]) + abs(step[1]) < 1e-4 and abs(step[2]) < 1e-4:
+                break
+    return Pose2D(float(xi[0]), float(xi[1]), wrap_angle(float(xi[2])))
 
 
 def _gauss_newton_step(

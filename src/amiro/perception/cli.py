@@ -4,17 +4,22 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
-from amiro.cli_support import add_json_flag, emit_json
-from amiro.core.config import ConfigError
+from amiro.cli_support import add_command, add_group, emit_json
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    perception = sub.add_parser("perception", help="person detection and 3D positions")
-    commands = perception.add_subparsers(dest="perception_command", metavar="COMMAND")
-    ev = commands.add_parser(
+def register(sub: Subcommands) -> None:
+    commands = add_group(
+        sub, "perception", "person detection and 3D positions", dest="perception_command"
+    )
+    ev = add_command(
+        commands,
         "evaluate",
+        _evaluate,
         help="Tables 7–13 of the paper on the generated RGB-D dataset",
         description="Generates the paper's dataset (17 people x 4 distances x 5 postures x 5 "
         "camera placements x 5 images) in the simulator and scores the paper's formulas, the "
@@ -27,19 +32,12 @@ def register(sub: Any) -> None:
         "--plot", default="perception_error_by_distance.png", help="PNG of the error by distance"
     )
     ev.add_argument("--no-plot", action="store_true", help="do not write the PNG")
-    add_json_flag(ev)
-    ev.set_defaults(handler=_evaluate)
-
-    def _no_command(args: argparse.Namespace) -> int:
-        perception.print_help()
-        return 2
-
-    perception.set_defaults(handler=_no_command)
 
 
 def _evaluate(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from amiro.core.config import ConfigError
     from amiro.perception.evaluation import evaluate
     from amiro.perception.report import plot_by_distance, print_report
     from amiro.sim.rgbd_dataset import DatasetSpec

@@ -3,22 +3,28 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from amiro.cli_support import add_json_flag, emit_json
-from amiro.core.config import ConfigError, parse
+from amiro.cli_support import add_command, add_group, emit_report
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    robot = sub.add_parser("robot", help="real robots: profiles and adapters (ROS 2, NAOqi)")
-    tools = robot.add_subparsers(dest="robot_tool", metavar="TOOL")
+def register(sub: Subcommands) -> None:
+    tools = add_group(
+        sub,
+        "robot",
+        "real robots: profiles and adapters (ROS 2, NAOqi)",
+        dest="robot_tool",
+        metavar="TOOL",
+    )
+    add_command(tools, "profiles", _profiles, help="the shipped robot profiles")
 
-    profiles = tools.add_parser("profiles", help="the shipped robot profiles")
-    add_json_flag(profiles)
-    profiles.set_defaults(handler=_profiles)
-
-    run = tools.add_parser(
+    run = add_command(
+        tools,
         "run",
+        _run,
         help="drive a real robot's adapter alone for a while and report what it saw",
         description="Connects to the robot (ROS 2 driver or NAOqi), optionally says a "
         "sentence, and counts the scans, odometry and commands that went through.",
@@ -30,14 +36,6 @@ def register(sub: Any) -> None:
     run.add_argument("--duration", type=float, default=5.0, help="seconds to run (default 5)")
     run.add_argument("--say", default=None, help="a sentence for the robot to say at start")
     run.add_argument("--lang", default="en", help="language of --say (default en)")
-    add_json_flag(run)
-    run.set_defaults(handler=_run)
-
-    def _no_tool(args: argparse.Namespace) -> int:
-        robot.print_help()
-        return 2
-
-    robot.set_defaults(handler=_no_tool)
 
 
 def _profiles(args: argparse.Namespace) -> int:
@@ -56,16 +54,13 @@ def _profiles(args: argparse.Namespace) -> int:
                 "naoqi": p.naoqi is not None,
             }
         )
-    if args.json:
-        emit_json({"profiles": rows})
-    else:
-        for row in rows:
-            print(f"{row['name']:14} {row['base']:16} {row['description']}")
-    return 0
+    text = "\n".join(f"{r['name']:14} {r['base']:16} {r['description']}" for r in rows)
+    return emit_report(args, {"profiles": rows}, text)
 
 
 def _run(args: argparse.Namespace) -> int:
     from amiro.core.clock import WallClock
+    from amiro.core.config import ConfigError, parse
     from amiro.core.messages import SpeechRequest
     from amiro.core.runtime import Runtime
     from amiro.robot.build import build_robot
@@ -101,8 +96,4 @@ def _run(args: argparse.Namespace) -> int:
         "duration_s": args.duration,
         **robot.stats(),
     }
-    if args.json:
-        emit_json(report)
-    else:
-        print(", ".join(f"{k}: {v}" for k, v in report.items()))
-    return 0
+    return emit_report(args, report, ", ".join(f"{k}: {v}" for k, v in report.items()))

@@ -6,50 +6,47 @@ import argparse
 import json
 import tempfile
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from amiro.cli_support import add_json_flag, emit_json
-from amiro.core.config import ConfigError
+from amiro.cli_support import add_command, add_group, emit_report
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    sim = sub.add_parser(
+def register(sub: Subcommands) -> None:
+    sim = add_command(
+        sub,
         "sim",
+        _sim,
         help="the simulated home as a ROS 2 node: /scan, /odom, /map, /clock; drive it on /cmd_vel",
     )
     sim.add_argument("--ros2", action="store_true", help="publish and subscribe over ROS 2")
     sim.add_argument("--speed", type=float, default=1.0, help="sim seconds per real second")
     sim.add_argument("--duration", type=float, default=None, help="stop after this sim time (s)")
     _common(sim)
-    sim.set_defaults(handler=_sim)
 
-    node = sub.add_parser("node", help="run one process of a split deployment (sim, edge, cloud)")
+    node = add_command(
+        sub, "node", _node, help="run one process of a split deployment (sim, edge, cloud)"
+    )
     node.add_argument("name", help="process name; also the role when --config is not given")
     node.add_argument("--config", type=Path, help="the process's YAML configuration")
     _common(node)
-    node.set_defaults(handler=_node)
 
-    launch = sub.add_parser("launch", help="start, watch and stop a deployment's processes")
+    launch = add_command(
+        sub, "launch", _launch, help="start, watch and stop a deployment's processes"
+    )
     launch.add_argument("deployment", type=Path, help="deployment YAML")
     launch.add_argument("--only", default="", help="comma-separated processes to run here")
     launch.add_argument("--domain-id", type=int, default=None, help="override ROS_DOMAIN_ID")
     launch.add_argument("--log-dir", type=Path, default=None, help="process logs and reports")
-    add_json_flag(launch)
-    launch.set_defaults(handler=_launch)
 
-    ros2 = sub.add_parser("ros2", help="ROS 2 bridge tools")
-    tools = ros2.add_subparsers(dest="ros2_tool", metavar="TOOL")
-    bench = tools.add_parser("bench", help="bridge latency and throughput vs the in-process bus")
+    tools = add_group(sub, "ros2", "ROS 2 bridge tools", dest="ros2_tool", metavar="TOOL")
+    bench = add_command(
+        tools, "bench", _bench, help="bridge latency and throughput vs the in-process bus"
+    )
     bench.add_argument("--seconds", type=float, default=3.0, help="duration of each measurement")
     bench.add_argument("--domain-id", type=int, default=None)
-    add_json_flag(bench)
-    bench.set_defaults(handler=_bench)
-
-    def _no_tool(args: argparse.Namespace) -> int:
-        ros2.print_help()
-        return 2
-
-    ros2.set_defaults(handler=_no_tool)
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
@@ -57,17 +54,13 @@ def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     parser.add_argument("--report", type=Path, default=None, help="write the JSON report here")
     parser.add_argument("--events", type=Path, default=None, help="append events as JSON lines")
-    add_json_flag(parser)
 
 
 def _finish(args: argparse.Namespace, report: dict[str, Any]) -> int:
     if args.report is not None:
         args.report.write_text(json.dumps(report, default=str), encoding="utf-8")
-    if args.json:
-        emit_json(report)
-    else:
-        print(f"{report['process']}: {report['outcome']} at {report['sim_time_s']} s sim time")
-    return 0
+    text = f"{report['process']}: {report['outcome']} at {report['sim_time_s']} s sim time"
+    return emit_report(args, report, text)
 
 
 def _with_domain(data: dict[str, Any], domain_id: int | None) -> dict[str, Any]:
@@ -77,7 +70,7 @@ def _with_domain(data: dict[str, Any], domain_id: int | None) -> dict[str, Any]:
 
 
 def _sim(args: argparse.Namespace) -> int:
-    from amiro.core.config import parse
+    from amiro.core.config import ConfigError, parse
     from amiro.ros2.config import NodeConfig
     from amiro.ros2.process import run_process
 
@@ -89,7 +82,7 @@ def _sim(args: argparse.Namespace) -> int:
 
 
 def _node(args: argparse.Namespace) -> int:
-    from amiro.core.config import parse, read_yaml
+    from amiro.core.config import ConfigError, parse, read_yaml
     from amiro.ros2.config import NodeConfig
     from amiro.ros2.process import run_process
 
@@ -140,19 +133,12 @@ def _launch(args: argparse.Namespace) -> int:
         ],
         "reports": {n: {k: v for k, v in r.items() if k != "events"} for n, r in reports.items()},
     }
-    if args.json:
-        emit_json(report)
-    else:
-        print(f"{dep.name}: {outcome} in {report['wall_time_s']} s; logs in {log_dir}")
-    return 0
+    text = f"{dep.name}: {outcome} in {report['wall_time_s']} s; logs in {log_dir}"
+    return emit_report(args, report, text)
 
 
 def _bench(args: argparse.Namespace) -> int:
     from amiro.ros2.bench import bench_bridge
 
     result = bench_bridge(args.seconds, args.domain_id)
-    if args.json:
-        emit_json(result)
-    else:
-        print(json.dumps(result, indent=2))
-    return 0
+    return emit_report(args, result, json.dumps(result, indent=2))

@@ -3,17 +3,22 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from amiro.cli_support import add_json_flag, emit_json
+from amiro.cli_support import add_command, add_group, emit_json
+
+if TYPE_CHECKING:
+    from amiro.cli_support import Subcommands
 
 
-def register(sub: Any) -> None:
-    run = sub.add_parser("run", help="run a scenario in the simulated home")
-    scenarios = run.add_subparsers(dest="scenario", metavar="SCENARIO")
-
-    hyd = scenarios.add_parser(
+def register(sub: Subcommands) -> None:
+    scenarios = add_group(
+        sub, "run", "run a scenario in the simulated home", dest="scenario", metavar="SCENARIO"
+    )
+    hyd = add_command(
+        scenarios,
         "hydration",
+        _run_hydration,
         help="the paper's section-5 scenario: find the person, remind them to drink, check",
         description="A hot room triggers a hydration reminder: the robot searches for the "
         "resident, goes to them, reminds them, listens, watches them drink and acknowledges "
@@ -42,11 +47,11 @@ def register(sub: Any) -> None:
         action="store_true",
         help="the robot cannot see the resident drink (occluded skeleton)",
     )
-    add_json_flag(hyd)
-    hyd.set_defaults(handler=_run_hydration)
 
-    deliver = scenarios.add_parser(
+    deliver = add_command(
+        scenarios,
         "deliver-notification",
+        _run_delivery,
         help="deliver a notification across the home, re-planning when a door is closed",
         description="The robot plans (PDDL) a way to Maria in the living room, finds a door "
         "on the way closed, re-plans, asks John for help or takes another route, and delivers.",
@@ -65,14 +70,6 @@ def register(sub: Any) -> None:
     )
     deliver.add_argument("--speed", type=float, default=None, help="as for hydration")
     deliver.add_argument("--config", help="YAML configuration overriding the defaults")
-    add_json_flag(deliver)
-    deliver.set_defaults(handler=_run_delivery)
-
-    def _no_scenario(args: argparse.Namespace) -> int:
-        run.print_help()
-        return 2
-
-    run.set_defaults(handler=_no_scenario)
 
 
 def _run_hydration(args: argparse.Namespace) -> int:
@@ -94,36 +91,32 @@ def _run_hydration(args: argparse.Namespace) -> int:
         speed=args.speed,
         config_path=args.config,
     )
-    report = run_hydration(options)
-    if args.json:
-        emit_json(report)
-    elif args.headless:
-        print(f"{report['scenario']}: {report['outcome']} in {report['sim_time_s']} s sim time")
-    return 0
+    return _finish(args, run_hydration(options))
 
 
 def _run_delivery(args: argparse.Namespace) -> int:
-    from amiro.behavior.planning.cli import ENGINES
-    from amiro.core.config import ConfigError
+    from amiro.behavior.planning.cli import check_engine
     from amiro.scenarios.deliver_notification import DeliveryOptions, run_delivery
 
-    if args.engine not in ENGINES:
-        raise ConfigError(f"unknown engine {args.engine!r} (choices: {', '.join(ENGINES)})")
     doors = args.closed_door or ["living_door"]
     options = DeliveryOptions(
         seed=args.seed,
         closed_doors=tuple(d for d in doors if d != "none"),
         help=not args.no_help,
-        engine=args.engine,
+        engine=check_engine(args.engine),
         live=not (args.headless or args.json),
         speed=args.speed,
         config_path=args.config,
     )
-    report = run_delivery(options)
+    return _finish(args, run_delivery(options))
+
+
+def _finish(args: argparse.Namespace, report: dict[str, Any]) -> int:
+    """The JSON report, or a summary when headless (the live log has said it all)."""
     if args.json:
         emit_json(report)
     elif args.headless:
         print(f"{report['scenario']}: {report['outcome']} in {report['sim_time_s']} s sim time")
-        if report["explanation"]:
+        if report.get("explanation"):
             print(report["explanation"])
     return 0

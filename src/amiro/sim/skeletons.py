@@ -33,6 +33,7 @@ class SkeletonStream:
         self.next_t: float | None = None
         self.pending: list[FloatArray] = []
         self.playing: tuple[str, bool] | None = None
+        self.clips = 0  # clips generated since the activity or posture last changed
 
     def advance(self, now: float, activity: str, sitting: bool) -> None:
         if self.next_t is None:
@@ -41,16 +42,21 @@ class SkeletonStream:
             if self.playing != (activity, sitting):
                 self.pending = []
                 self.playing = (activity, sitting)
+                self.clips = 0
             if not self.pending:
                 self.pending = self._clip(activity, sitting)
+                self.clips += 1
             self.frames.append(self.pending.pop(0))
             self.next_t += 1.0 / FPS
 
     def _clip(self, activity: str, sitting: bool) -> list[FloatArray]:
-        if activity == "falling" and self.frames and self.playing == (activity, sitting):
+        if activity == "falling" and self.clips > 0:
             return [self.frames[-1]]  # after the fall: lying still
         action = IDLE if activity == "idle" else activity
-        return list(perform(action, self.body, self.rng, FPS, sitting))
+        clip = list(perform(action, self.body, self.rng, FPS, sitting))
+        if activity == "falling" and sitting:  # a seated person gets up, then falls
+            return list(perform("standing_up", self.body, self.rng, FPS)) + clip
+        return clip
 
     def last(self, n: int) -> FloatArray:
         frames = list(self.frames)[-n:]

@@ -1,11 +1,24 @@
-"""Declarative planning (PDDL) and re-planning of the robot's errands (paper, section 3.7)."""
+"""Declarative planning (PDDL) and re-planning of the robot's errands (paper, section 3.7).
 
-from amiro.behavior.planning.executive import PlanExecutive
-from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.knowledge_node import KnowledgeNode
-from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, PlanOutcome, PlanStep
-from amiro.behavior.planning.problem import Goal, RobotState
-from amiro.behavior.planning.topology import Topology, grid_topology, topology_from_world
+The names load their submodule on first use, so ``amiro.behavior.planning.cli`` (built for
+``amiro --help``) does not load the planners.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from amiro.core.lazy import lazy_getattr
+
+if TYPE_CHECKING:
+    from amiro.behavior.planning.executive import PlanExecutive
+    from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
+    from amiro.behavior.planning.knowledge_node import KnowledgeNode
+    from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, PlanOutcome, PlanStep
+    from amiro.behavior.planning.problem import Goal, RobotState
+    from amiro.behavior.planning.topology import Topology, grid_topology, topology_from_world
+
+_SUBMODULES = ("executive", "knowledge", "knowledge_node", "planner", "problem", "topology")
 
 __all__ = [
     "DoorState",
@@ -22,3 +35,5 @@ __all__ = [
     "grid_topology",
     "topology_from_world",
 ]
+
+__getattr__ = lazy_getattr(__name__, __all__, _SUBMODULES)

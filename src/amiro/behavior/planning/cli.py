@@ -3,19 +3,25 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any, get_args
+from typing import TYPE_CHECKING, cast
 
-from amiro.cli_support import add_json_flag, emit_json
+from amiro.cli_support import add_command, add_group, emit_report
+
+if TYPE_CHECKING:
+    from amiro.behavior.planning.planner import Engine, PlanningConfig
+    from amiro.cli_support import Subcommands
 
 ENGINES = ("pyperplan", "fast-downward", "kairos")
 
 
-def register(sub: Any) -> None:
-    plan = sub.add_parser("plan", help="declarative planning (PDDL) of the robot's errands")
-    cmds = plan.add_subparsers(dest="plan_command", metavar="COMMAND")
-
-    bench = cmds.add_parser(
+def register(sub: Subcommands) -> None:
+    cmds = add_group(
+        sub, "plan", "declarative planning (PDDL) of the robot's errands", dest="plan_command"
+    )
+    bench = add_command(
+        cmds,
         "bench",
+        _bench,
         help="planning time for generated homes of 5, 10 and 20 rooms",
         description="Plans a delivery across generated homes of 5, 10 and 20 rooms and "
         "reports the median planning time (problem generation and engine, milliseconds).",
@@ -23,24 +29,16 @@ def register(sub: Any) -> None:
     _engine_args(bench)
     bench.add_argument("--trials", type=int, default=5, help="plans per home (default 5)")
     bench.add_argument("--seed", type=int, default=0, help="seed of the generated homes")
-    add_json_flag(bench)
-    bench.set_defaults(handler=_bench)
 
-    pddl = cmds.add_parser(
+    pddl = add_command(
+        cmds,
         "pddl",
+        _pddl,
         help="print the PDDL domain and problem of the default apartment",
         description="The domain generated for the shipped apartment and a problem: deliver a "
         "notification to Maria in the living room, starting from the dock.",
     )
     pddl.add_argument("--temporal", action="store_true", help="the durative variant")
-    add_json_flag(pddl)
-    pddl.set_defaults(handler=_pddl)
-
-    def _no_command(args: argparse.Namespace) -> int:
-        plan.print_help()
-        return 2
-
-    plan.set_defaults(handler=_no_command)
 
 
 def _engine_args(parser: argparse.ArgumentParser) -> None:
@@ -48,13 +46,21 @@ def _engine_args(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--temporal", action="store_true", help="durative actions (kairos)")
 
 
-def _config(args: argparse.Namespace) -> Any:
-    from amiro.behavior.planning.planner import Engine, PlanningConfig
-    from amiro.core.config import ConfigError, parse
+def check_engine(engine: str) -> Engine:
+    """The engine's name, or a one-line ConfigError listing the choices."""
+    from amiro.core.config import ConfigError
 
-    if args.engine not in get_args(Engine):
-        raise ConfigError(f"unknown engine {args.engine!r} (choices: {', '.join(ENGINES)})")
-    return parse(PlanningConfig, {"engine": args.engine, "temporal": args.temporal}, "--engine")
+    if engine not in ENGINES:
+        raise ConfigError(f"unknown engine {engine!r} (choices: {', '.join(ENGINES)})")
+    return cast("Engine", engine)
+
+
+def _config(args: argparse.Namespace) -> PlanningConfig:
+    from amiro.behavior.planning.planner import PlanningConfig
+    from amiro.core.config import parse
+
+    data = {"engine": check_engine(args.engine), "temporal": args.temporal}
+    return parse(PlanningConfig, data, "--engine")
 
 
 def _bench(args: argparse.Namespace) -> int:
@@ -64,16 +70,13 @@ def _bench(args: argparse.Namespace) -> int:
     if args.trials < 1:
         raise ConfigError(f"--trials must be at least 1, got {args.trials}")
     report = run_bench(_config(args), seed=args.seed, trials=args.trials)
-    if args.json:
-        emit_json(report)
-        return 0
-    for home in report["homes"]:
-        print(
-            f"{home['rooms']:3d} rooms, {home['doors']:3d} doors: {home['ms_median']:8.1f} ms "
-            f"(median of {report['trials']}, {home['plan_steps']} actions)"
-        )
-    print(f"target < 100 ms for 10 rooms: {'met' if report['meets_target'] else 'missed'}")
-    return 0
+    lines = [
+        f"{home['rooms']:3d} rooms, {home['doors']:3d} doors: {home['ms_median']:8.1f} ms "
+        f"(median of {report['trials']}, {home['plan_steps']} actions)"
+        for home in report["homes"]
+    ]
+    lines.append(f"target < 100 ms for 10 rooms: {'met' if report['meets_target'] else 'missed'}")
+    return emit_report(args, report, "\n".join(lines))
 
 
 def _pddl(args: argparse.Namespace) -> int:
@@ -96,9 +99,4 @@ def _pddl(args: argparse.Namespace) -> int:
     )
     writer = PDDLWriter(problem)
     domain, task = writer.get_domain(), writer.get_problem()
-    if args.json:
-        emit_json({"domain": domain, "problem": task})
-    else:
-        print(domain)
-        print(task)
-    return 0
+    return emit_report(args, {"domain": domain, "problem": task}, f"{domain}\n{task}")

@@ -12,7 +12,7 @@ import math
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
 from amiro.behavior.tasks.gaze import look_at
-from amiro.core.messages import Point, Pose2D, Twist
+from amiro.core.messages import Point, Twist
 
 CMD_VEL = "/cmd_vel"
 
@@ -25,7 +25,7 @@ class RecognizeActivity(Task):
     ``reframe`` (move the base to the trained framing, default true), ``reframe_speed``
     (m/s, default 0.15), ``max_reframe_m`` (default 1.0).
     Fails with ``skeleton_incomplete`` when the skeleton was never usable, else
-    ``not_recognised``."""
+    ``not_recognised``.  ``detail["reframed_m"]``: how far the base went (odometry)."""
 
     type_name = "RecognizeActivity"
     cancellable = True
@@ -46,8 +46,8 @@ class RecognizeActivity(Task):
         self.complete_seen = False
         self.labels: dict[str, int] = {}
         self.direction = 0  # +1 forwards, -1 backwards, 0 still
-        self.commanded = 0.0  # m of reframing driven so far (the budget counts this)
-        self.start_pose = self._pose(ctx)
+        self.commanded = 0.0  # m of reframing asked for so far (the budget counts this)
+        self.travelled = 0.0  # m the base went, from odometry (0 when blocked)
         self.last_tick = ctx.now()
         self.target = p.get("look_at") if isinstance(p.get("look_at"), Point) else None
         if self.target is not None:
@@ -68,7 +68,7 @@ class RecognizeActivity(Task):
                 self.detail = {
                     "activity": self.activity,
                     "confidence": round(reading.confidence, 3),
-                    "reframed_m": self._reframed(ctx),
+                    "reframed_m": round(self.travelled, 2),
                 }
                 ctx.event("activity_recognised", activity=self.activity, person=self.person)
                 return TaskStatus.SUCCESS
@@ -82,7 +82,7 @@ class RecognizeActivity(Task):
             self.detail = {
                 "reason": reason,
                 "seen": self.labels,
-                "reframed_m": self._reframed(ctx),
+                "reframed_m": round(self.travelled, 2),
             }
             return TaskStatus.FAILURE
         return TaskStatus.RUNNING
@@ -100,21 +100,8 @@ class RecognizeActivity(Task):
         want = -1 if (clipped or box > high) else (1 if box < low else 0)
         return want if want != 0 and self._free_ahead(ctx, want) else 0
 
-    @staticmethod
-    def _pose(ctx: TaskContext) -> Pose2D | None:
-        navigation = ctx.modules.get("navigation")
-        pose: Pose2D | None = getattr(navigation, "pose", None)
-        return pose
-
-    def _reframed(self, ctx: TaskContext) -> float:
-        """How far the base actually went while reframing (0 when blocked)."""
-        pose = self._pose(ctx)
-        if pose is None or self.start_pose is None:
-            return 0.0
-        return round(pose.distance_to(self.start_pose), 2)
-
     def _free_ahead(self, ctx: TaskContext, direction: int, look: float = 0.3) -> bool:
-        pose = self._pose(ctx)
+        pose = ctx.module("navigation").pose
         world = ctx.modules.get("world")
         if pose is None or world is None:
             return False
@@ -124,6 +111,9 @@ class RecognizeActivity(Task):
 
     def _drive(self, ctx: TaskContext, now: float) -> None:
         dt, self.last_tick = now - self.last_tick, now
+        # the navigation module's odometry velocity (vx, vy, wz): what the wheels did
+        velocity = getattr(ctx.modules.get("navigation"), "velocity", (0.0, 0.0, 0.0))
+        self.travelled += abs(float(velocity[0])) * dt
         if self.direction == 0:
             return
         self.commanded += self.speed * dt

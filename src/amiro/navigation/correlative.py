@@ -1,0 +1,136 @@
+"""Correlative scan matching: exhaustive search of a pose window, coarse grid first.
+
+Gauss-Newton only finds the nearest local optimum; closing a loop after metres of drift
+needs the global optimum of a wide window (Olson 2009, "Real-time correlative scan
+matching").  Every rotation step and every translation on a coarse lattice is scored on a
+max-pooled map (an upper bound of the fine scores it covers), the best few distinct
+candidates are searched again at full resolution, and the runner-up's score is reported so
+the caller can reject ambiguous matches (a corridor looks the same a door further on).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+from scipy.ndimage import gaussian_filter, maximum_filter
+
+from amiro.core.messages import Pose2D
+from amiro.sim.geometry import wrap_angle
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class ScanMatch:
+    pose: Pose2D
+    score: float  # mean hit likelihood of the scan points, 0..1
+    runner_up: float  # best score of a pose at least ``separation`` away
+
+
+@dataclass(frozen=True)
+class SearchWindow:
+    xy: float  # half-width, metres
+    theta: float  # half-width, radians
+
+
+class CorrelativeMatcher:
+    """Matches scans against one occupancy-probability grid (lower-left corner ``origin``)."""
+
+    def __init__(
+        self,
+        prob: npt.NDArray[np.float32],
+        resolution: float,
+        origin: tuple[float, float],
+        coarse_factor: int = 4,
+        angle_step: float = math.radians(1.0),
+        separation: float = 1.0,
+    ) -> None:
+        hits = np.clip(2.0 * (prob.astype(np.float64) - 0.5), 0.0, 1.0)  # unknown, free: 0
+        self.fine = np.asarray(gaussian_filter(hits, 1.0) * 2.5).clip(0.0, 1.0)
+        pooled = maximum_filter(self.fine, size=coarse_factor + 1, mode="constant")
+        self.coarse = pooled  # same cells, only searched on a coarser lattice
+        self.resolution = resolution
+        self.origin = origin
+        self.factor = coarse_factor
+        self.angle_step = angle_step
+        self.separation = separation
+
+    def match(
+        self, px: FloatArray, py: FloatArray, guess: Pose2D, window: SearchWindow
+    ) -> ScanMatch:
+        """The best pose within ``window`` of ``guess`` for points (px, py) in the robot frame."""
+        n_theta = max(0, math.ceil(window.theta / self.angle_step))
+        thetas = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1)
+        n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
+        offsets = self.factor * np.arange(-n_xy, n_xy + 1)
+        scores = self._scores(self.coarse, px, py, guess.x, guess.y, thetas, offsets)
+        candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
+        fine_offsets = np.arange(-self.factor, self.factor + 1)
+        fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)
+        refined: list[tuple[float, Pose2D]] = []
+        for cand in candidates:
+            ths = cand.theta + fine_steps
+            sc = self._scores(self.fine, px, py, cand.x, cand.y, ths, fine_offsets)
+            k, r, c = np.unravel_index(int(np.argmax(sc)), sc.shape)
+            res = self.resolution
+            pose = Pose2D(
+                cand.x + fine_offsets[c] * res,
+                cand.y + fine_offsets[r] * res,
+                wrap_angle(float(ths[k])),
+            )
+            refined.append((float(sc[k, r, c]), pose))
+        refined.sort(key=lambda t: -t[0])
+        best_score, best = refined[0]
+        others = [s for s, p in refined[1:] if p.distance_to(best) >= self.separation]
+        return ScanMatch(best, best_score, max(others, default=0.0))
+
+    def _scores(
+        self,
+        grid: FloatArray,
+        px: FloatArray,
+        py: FloatArray,
+        x: float,
+        y: float,
+        thetas: FloatArray,
+        offsets: npt.NDArray[np.int64],
+    ) -> FloatArray:
+        """Mean grid value at the points for every (theta, row offset, column offset)."""
+        h, w = grid.shape
+        res = self.resolution
+        out = np.empty((len(thetas), len(offsets), len(offsets)))
+        for k, theta in enumerate(thetas):
+            c, s = math.cos(theta), math.sin(theta)
+            col = np.floor((x + c * px - s * py - self.origin[0]) / res).astype(np.int64)
+            row = np.floor((y + s * px + c * py - self.origin[1]) / res).astype(np.int64)
+            rows = row[None, None, :] + offsets[:, None, None]
+            cols = col[None, None, :] + offsets[None, :, None]
+            inside = (rows >= 0) & (rows < h) & (cols >= 0) & (cols < w)
+            vals = np.where(inside, grid[rows.clip(0, h - 1), cols.clip(0, w - 1)], 0.0)
+            out[k] = vals.mean(axis=2)
+        return out
+
+    def _distinct_best(
+        self,
+        scores: FloatArray,
+        thetas: FloatArray,
+        offsets: npt.NDArray[np.int64],
+        guess: Pose2D,
+        count: int,
+    ) -> list[Pose2D]:
+        """The best-scoring lattice poses, each at least ``separation`` from the others
+        (greedy non-maximum suppression over the best rotation per translation)."""
+        best_theta = np.argmax(scores, axis=0)
+        plane = np.max(scores, axis=0)
+        metres = offsets * self.resolution
+        dy, dx = np.meshgrid(metres, metres, indexing="ij")
+        chosen: list[Pose2D] = []
+        while len(chosen) < count and np.isfinite(plane).any():
+            r, c = np.unravel_index(int(np.argmax(plane)), plane.shape)
+            chosen.append(
+                Pose2D(guess.x + dx[r, c], guess.y + dy[r, c], float(thetas[best_theta[r, c]]))
+            )
+            plane[np.hypot(dx - dx[r, c], dy - dy[r, c]) < self.separation] = -np.inf
+        return chosen
