@@ -149,7 +149,11 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
         if not path.is_file():
             raise ConfigError(f"behavior.handlers.{kind}: {path}: no such file")
         handlers.register(kind, yaml_handler(path), replace=True)
-    runtime.add(FallMonitorNode(activity, handlers, lambda: list(sim.residents.residents)))
+    if cfg.activity.fall_detection:
+        residents = sim.residents.residents
+        runtime.add(
+            FallMonitorNode(activity, handlers, lambda: list(residents), cfg.activity.fall_period_s)
+        )
 
     profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
     notifications = runtime.add(NotificationHandlerNode(engine, handlers, profiles))

@@ -102,7 +102,7 @@ class Node:
         self._timers.append(timer)
         return timer
 
-    def call_later(self, delay: float, callback: Callable[[], None]) -> Timer:
+    def call_later(self, delay: float, callback: Callable[[], object]) -> Timer:
         """A one-shot timer, released with the node like every other resource."""
         timer = self.runtime.call_later(delay, callback, owner=self)
         self._timers.append(timer)

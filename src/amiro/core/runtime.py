@@ -32,7 +32,7 @@ class Timer:
     due: float
     seq: int
     period: float = field(compare=False)
-    callback: Callable[[], None] = field(compare=False)
+    callback: Callable[[], object] = field(compare=False)  # its return value is ignored
     owner: object | None = field(compare=False, default=None)
     active: bool = field(compare=False, default=True)
 
@@ -148,7 +148,7 @@ class Runtime:
         return timer
 
     def call_later(
-        self, delay: float, callback: Callable[[], None], owner: object | None = None
+        self, delay: float, callback: Callable[[], object], owner: object | None = None
     ) -> Timer:
         """A one-shot timer."""
         timer = Timer(self.clock.now() + max(delay, 0.0), next(self._seq), 0.0, callback, owner)

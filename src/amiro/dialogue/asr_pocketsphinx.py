@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from pocketsphinx import Decoder  # type: ignore[import-untyped,import-not-found,unused-ignore]
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.asr import Transcript
-from amiro.dialogue.audio import ASR_RATE, Audio, resample
+from amiro.dialogue.audio import ASR_RATE, Audio, add_noise_floor, resample
 from amiro.dialogue.grammar import ANSWER_INTENTS, jsgf, shipped_hints
 from amiro.dialogue.training_data import shipped_training_data
 
@@ -20,13 +21,14 @@ DECODER_SETTINGS: dict[str, object] = {}
 
 
 class PocketsphinxRecognizer:
-    def __init__(self, grammar: str = "nlu", lang: str = "en") -> None:
+    def __init__(self, grammar: str = "nlu", lang: str = "en", seed: int = 0) -> None:
         if lang != "en":
             raise ConfigError(f"asr pocketsphinx: only the bundled English model (not '{lang}')")
         if grammar not in GRAMMARS:
             raise ConfigError(
                 f"asr pocketsphinx: unknown grammar '{grammar}' ({', '.join(GRAMMARS)})"
             )
+        self.seed = seed
         self.decoder = Decoder(samprate=ASR_RATE, loglevel="FATAL", **DECODER_SETTINGS)
         if grammar != "none":
             hints = shipped_hints(lang)
@@ -42,7 +44,9 @@ class PocketsphinxRecognizer:
 
     def transcribe(self, audio: Audio) -> Transcript:
         self.decoder.start_utt()
-        self.decoder.process_raw(resample(audio, ASR_RATE).to_bytes(), full_utt=True)
+        # the same floor for the same audio: a transcript does not depend on earlier calls
+        audio = add_noise_floor(resample(audio, ASR_RATE), np.random.default_rng(self.seed))
+        self.decoder.process_raw(audio.to_bytes(), full_utt=True)
         self.decoder.end_utt()
         hyp = self.decoder.hyp()
         if hyp is None:

@@ -75,3 +75,22 @@ def preprocess(audio: Audio, gain_db: float = 0.0, highpass_hz: float = 0.0) -> 
         x = signal.sosfilt(sos, x)
     x *= 10.0 ** (gain_db / 20.0)
     return Audio(np.clip(x, -32768, 32767).astype(np.int16), audio.rate)
+
+
+def add_white_noise(audio: Audio, rng: np.random.Generator, rms: float) -> Audio:
+    x = audio.samples.astype(np.float64) + rng.normal(0.0, rms, len(audio.samples))
+    return Audio(np.clip(np.round(x), -32768, 32767).astype(np.int16), audio.rate)
+
+
+def add_noise_at_snr(audio: Audio, rng: np.random.Generator, snr_db: float) -> Audio:
+    """White noise ``snr_db`` below the recording's mean power (silences included)."""
+    power = float(np.mean(audio.samples.astype(np.float64) ** 2))
+    return add_white_noise(audio, rng, (power / 10.0 ** (snr_db / 10.0)) ** 0.5)
+
+
+def add_noise_floor(audio: Audio, rng: np.random.Generator, rms: float = 10.0) -> Audio:
+    """Audio with a faint noise floor (``rms`` in sample units, about -70 dBFS by default), as
+    any microphone has.  Synthetic speech has stretches of exact digital silence whose log
+    energy the recogniser's features cannot represent: measured on espeak-ng commands,
+    pocketsphinx's grammar search then fails to reach the end of the sentence."""
+    return add_white_noise(audio, rng, rms)

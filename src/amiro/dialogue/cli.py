@@ -33,6 +33,13 @@ def register(sub: Subcommands) -> None:
     aev.add_argument("--backend", default="pocketsphinx", help="pocketsphinx, vosk or google")
     aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
     aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
+    syn = add_command(
+        asr, "synthesize", _synthesize, help="speak commands into WAV files (espeak-ng, noise)"
+    )
+    syn.add_argument("file", type=Path, help="commands, one per line (# comments)")
+    syn.add_argument("out", type=Path, help="directory for the WAV files")
+    syn.add_argument("--snr", type=float, help="add white noise at this SNR in dB")
+    syn.add_argument("--seed", type=int, default=0, help="noise seed (default 0)")
 
     chat = add_command(
         sub, "chat", _chat, help="talk to the dialogue module in a terminal", with_json=False
@@ -88,6 +95,20 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
         f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}"
     )
     return emit_report(args, report, text)
+
+
+def _synthesize(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from amiro.dialogue.asr_testset import read_commands, write_test_set
+    from amiro.dialogue.tts import EspeakSynthesizer
+
+    commands = read_commands(args.file)
+    rng = np.random.default_rng(args.seed)
+    written = write_test_set(commands, args.out, EspeakSynthesizer(), rng, args.snr)
+    report = {"files": len(written), "dir": str(args.out), "snr_db": args.snr}
+    noise = "clean" if args.snr is None else f"white noise at {args.snr:g} dB SNR"
+    return emit_report(args, report, f"{len(written)} WAV files in {args.out} ({noise})")
 
 
 def _chat(args: argparse.Namespace) -> int:

@@ -26,7 +26,7 @@ FloatArray = npt.NDArray[np.float64]
 @dataclass(frozen=True)
 class ScanMatch:
     pose: Pose2D
-    score: float  # mean hit likelihood of the scan points, 0..1
+    score: float  # mean hit likelihood of the scan points in seen space, 0..1
     runner_up: float  # best score of a pose at least ``separation`` away
 
 
@@ -47,11 +47,18 @@ class CorrelativeMatcher:
         coarse_factor: int = 4,
         angle_step: float = math.radians(1.0),
         separation: float = 1.0,
+        min_known: float = 0.5,
     ) -> None:
         hits = np.clip(2.0 * (prob.astype(np.float64) - 0.5), 0.0, 1.0)  # unknown, free: 0
         self.fine = np.asarray(gaussian_filter(hits, 1.0) * 2.5).clip(0.0, 1.0)
-        pooled = maximum_filter(self.fine, size=coarse_factor + 1, mode="constant")
-        self.coarse = pooled  # same cells, only searched on a coarser lattice
+        # points in unseen space say nothing either way: the score averages over the points
+        # that land in seen cells, else a match would slide to cover the map more fully
+        known = maximum_filter((prob != 0.5).astype(np.float64), size=3)
+        size = coarse_factor + 1
+        self.known_fine = known
+        self.coarse = maximum_filter(self.fine, size=size, mode="constant")
+        self.known_coarse = maximum_filter(known, size=size, mode="constant")
+        self.min_known = min_known
         self.resolution = resolution
         self.origin = origin
         self.factor = coarse_factor
@@ -66,14 +73,14 @@ class CorrelativeMatcher:
         thetas = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1)
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
         offsets = self.factor * np.arange(-n_xy, n_xy + 1)
-        scores = self._scores(self.coarse, px, py, guess.x, guess.y, thetas, offsets)
+        scores = self._scores(self.coarse, self.known_coarse, px, py, guess.x, guess.y, thetas, offsets)
         candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
         fine_offsets = np.arange(-self.factor, self.factor + 1)
         fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)
         refined: list[tuple[float, Pose2D]] = []
         for cand in candidates:
             ths = cand.theta + fine_steps
-            sc = self._scores(self.fine, px, py, cand.x, cand.y, ths, fine_offsets)
+            sc = self._scores(self.fine, self.known_fine, px, py, cand.x, cand.y, ths, fine_offsets)
             k, r, c = np.unravel_index(int(np.argmax(sc)), sc.shape)
             res = self.resolution
             pose = Pose2D(
@@ -90,6 +97,7 @@ class CorrelativeMatcher:
     def _scores(
         self,
         grid: FloatArray,
+        known: FloatArray,
         px: FloatArray,
         py: FloatArray,
         x: float,
@@ -97,7 +105,8 @@ class CorrelativeMatcher:
         thetas: FloatArray,
         offsets: npt.NDArray[np.int64],
     ) -> FloatArray:
-        """Mean grid value at the points for every (theta, row offset, column offset)."""
+        """Mean grid value at the points in seen cells (at least ``min_known`` of them) for
+        every (theta, row offset, column offset)."""
         h, w = grid.shape
         res = self.resolution
         out = np.empty((len(thetas), len(offsets), len(offsets)))
@@ -108,8 +117,10 @@ class CorrelativeMatcher:
             rows = row[None, None, :] + offsets[:, None, None]
             cols = col[None, None, :] + offsets[None, :, None]
             inside = (rows >= 0) & (rows < h) & (cols >= 0) & (cols < w)
-            vals = np.where(inside, grid[rows.clip(0, h - 1), cols.clip(0, w - 1)], 0.0)
-            out[k] = vals.mean(axis=2)
+            rows, cols = rows.clip(0, h - 1), cols.clip(0, w - 1)
+            hit_sum = np.where(inside, grid[rows, cols], 0.0).sum(axis=2)
+            seen = np.where(inside, known[rows, cols], 0.0).sum(axis=2)
+            out[k] = hit_sum / np.maximum(seen, self.min_known * len(px))
         return out
 
     def _distinct_best(

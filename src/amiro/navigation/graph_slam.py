@@ -139,14 +139,13 @@ class GraphSlam:
         self._last_check = self._travel
         px, py = self._local_cloud(k)
         poses = [self.graph.pose(i) for i in range(len(self.keyframes))]
-        edges = self.loops.search(
-            px, py, poses[k], poses, self._travel, self._travel - self._last_closure
-        )
+        since = self._travel - self._last_closure
+        edges = self.loops.search(k, px, py, poses, self._travel, since)
         for edge in edges:
-            self.graph.add_edge(edge.anchor, k, edge.z, p.loop_sigma, robust=True)
+            self.graph.add_edge(edge.anchor, edge.keyframe, edge.z, p.loop_sigma, robust=True)
         if not edges:
             return
-        gap = self._travel - self._last_closure
+        gap = since
         self.loop_closures += len(edges)
         self._pending += len(edges)
         self._last_closure = self._travel

@@ -21,6 +21,7 @@ from amiro.navigation.correlative import CorrelativeMatcher, SearchWindow
 from amiro.navigation.poses import between, compose
 from amiro.navigation.slam import match_scan
 from amiro.navigation.submaps import Submap
+from amiro.sim.geometry import wrap_angle
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -28,24 +29,36 @@ FloatArray = npt.NDArray[np.float64]
 @dataclass(frozen=True)
 class LoopParams:
     min_travel_m: float = 20.0
-    window_base_m: float = 0.5
-    window_per_m: float = 0.03  # search half-width per metre travelled since the last closure
+    window_base_m: float = 2.0  # wide enough to see aliases, for the uniqueness test
+    window_per_m: float = 0.02  # search half-width per metre travelled since the last closure
     window_max_m: float = 6.0
     theta_base: float = math.radians(3.0)
     theta_per_m: float = math.radians(0.1)
     theta_max: float = math.radians(15.0)
     min_score: float = 0.5
-    max_ambiguity: float = 0.9  # runner-up score / best score
+    max_ambiguity: float = 0.85  # runner-up score / best score
     max_candidates: int = 2
     max_range: float = 12.0
+    agree_m: float = 0.3  # two matches agree if their corrections differ less than this
+    agree_rad: float = math.radians(2.0)
+    consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
+    independent_m: float = 3.0  # agreeing matches must come from this far apart
 
 
 @dataclass(frozen=True)
 class LoopEdge:
     anchor: int  # keyframe the submap hangs on
-    z: Pose2D  # the current keyframe seen from the anchor
+    keyframe: int
+    z: Pose2D  # ``keyframe`` seen from ``anchor``
     score: float
     runner_up: float
+
+
+@dataclass(frozen=True)
+class _Candidate:
+    edge: LoopEdge
+    travel: float
+    correction: tuple[float, float, float]  # implied pose minus estimate (map frame)
 
 
 @dataclass
@@ -59,6 +72,7 @@ class LoopCloser:
     def __init__(self, params: LoopParams | None = None) -> None:
         self.params = params or LoopParams()
         self._submaps: list[_Finished] = []
+        self._waiting: list[_Candidate] = []
         self.rejected = 0
 
     def add(self, submap: Submap, travel: float) -> None:
@@ -68,15 +82,47 @@ class LoopCloser:
 
     def search(
         self,
+        keyframe: int,
+        px: FloatArray,
+        py: FloatArray,
+        poses: list[Pose2D],
+        travel: float,
+        since_closure: float,
+    ) -> list[LoopEdge]:
+        """Verified loop edges for ``keyframe`` (points px, py in its frame; ``poses``: graph
+        pose of every keyframe).  A match whose correction of the current estimate is
+        small is accepted at once; a larger one (a first closure after a long drift, or an
+        alias along a corridor) waits until a match from another keyframe implies the same
+        correction, since aliases a few metres apart rarely agree."""
+        current = poses[keyframe]
+        found = self._matches(keyframe, px, py, current, poses, travel, since_closure)
+        p = self.params
+        self._waiting = [c for c in self._waiting if travel - c.travel <= p.consensus_m]
+        accepted: list[LoopEdge] = []
+        for cand in found:
+            dx, dy, dth = cand.correction
+            if math.hypot(dx, dy) < p.agree_m and abs(dth) < p.agree_rad:
+                accepted.append(cand.edge)
+                continue
+            agreeing = [w for w in self._waiting if _agree(w, cand, p)]
+            if agreeing:
+                accepted.extend(w.edge for w in agreeing)
+                accepted.append(cand.edge)
+                self._waiting = [w for w in self._waiting if w not in agreeing]
+            else:
+                self._waiting.append(cand)
+        return accepted
+
+    def _matches(
+        self,
+        keyframe: int,
         px: FloatArray,
         py: FloatArray,
         current: Pose2D,
         anchor_pose: list[Pose2D],
         travel: float,
         since_closure: float,
-    ) -> list[LoopEdge]:
-        """Loop edges for a keyframe at graph pose ``current`` (``anchor_pose[k]``: graph
-        pose of keyframe k)."""
+    ) -> list[_Candidate]:
         p = self.params
         window = SearchWindow(
             min(p.window_max_m, p.window_base_m + p.window_per_m * since_closure),
@@ -103,7 +149,22 @@ class LoopCloser:
             refined = match_scan(sm.levels, px, py, found.pose, 0.0, 6)
             if refined.distance_to(found.pose) > 0.2:
                 refined = found.pose
-            edges.append(
-                LoopEdge(sm.anchor, between(sm.anchor_pose, refined), found.score, found.runner_up)
+            z = between(sm.anchor_pose, refined)
+            implied = compose(g_anchor, z)
+            correction = (
+                implied.x - current.x,
+                implied.y - current.y,
+                wrap_angle(implied.theta - current.theta),
             )
+            edge = LoopEdge(sm.anchor, keyframe, z, found.score, found.runner_up)
+            edges.append(_Candidate(edge, travel, correction))
         return edges
+
+
+def _agree(a: _Candidate, b: _Candidate, p: LoopParams) -> bool:
+    """Same correction from independent evidence: other submaps, scans metres apart (the
+    same alias seen again from a step further on would agree with itself)."""
+    if a.edge.anchor == b.edge.anchor or abs(a.travel - b.travel) < p.independent_m:
+        return False
+    (ax, ay, ath), (bx, by, bth) = a.correction, b.correction
+    return math.hypot(ax - bx, ay - by) < p.agree_m and abs(wrap_angle(ath - bth)) < p.agree_rad
