@@ -41,3 +41,13 @@ def test_every_way_closed_and_no_help_ends_without_a_plan_and_says_why() -> None
     assert "kitchen_living_door is closed" in rep["explanation"]
     assert types(rep).count("replan") >= 2
     assert types(rep)[-1] != "plan_completed"
+
+
+def test_check_activity_after_delivering_in_romanian() -> None:
+    rep = run_delivery(DeliveryOptions(closed_doors=(), lang="ro", check_activity="play_phone"))
+    assert rep["outcome"] == "completed" and rep["replans"] == 0
+    assert rep["plans"][0]["steps"][-1]["action"] == "check_activity"
+    said = [e["text"] for e in rep["events"] if e["type"] == "say"]
+    assert said == ["Maria, a sunat fiica dumneavoastră: vă vizitează în după-amiaza aceasta."]
+    seen = [e for e in rep["events"] if e["type"] == "activity_recognised"]
+    assert seen and seen[0]["activity"] == "play_phone"

@@ -144,6 +144,10 @@ class GoalHandle(Generic[G, F, R]):
     def canceled(self, result: R) -> None:
         self._finish(GoalStatus.CANCELED, result)
 
+    def reject(self, result: R) -> None:
+        """Refuse a goal after it was handed on (a remote server said no)."""
+        self._finish(GoalStatus.REJECTED, result)
+
     def _finish(self, status: GoalStatus, result: R) -> None:
         if self.status.done:
             return

@@ -70,10 +70,12 @@ class CorrelativeMatcher:
     ) -> ScanMatch:
         """The best pose within ``window`` of ``guess`` for points (px, py) in the robot frame."""
         n_theta = max(0, math.ceil(window.theta / self.angle_step))
-        thetas = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1)
+        thetas: FloatArray = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1.0)
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
         offsets = self.factor * np.arange(-n_xy, n_xy + 1)
-        scores = self._scores(self.coarse, self.known_coarse, px, py, guess.x, guess.y, thetas, offsets)
+        scores = self._scores(
+            self.coarse, self.known_coarse, px, py, guess.x, guess.y, thetas, offsets
+        )
         candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
         fine_offsets = np.arange(-self.factor, self.factor + 1)
         fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)

@@ -28,9 +28,14 @@ from amiro.navigation.submaps import SubmapFrontEnd
 FloatArray = npt.NDArray[np.float64]
 
 
+# beams are free only up to 3 sigma of a 1 %-of-range lidar noise short of their hit (see
+# LogOddsGrid): without it the front end over-estimates travel along corridors by ~1.5 %
+LIDAR_FREE_MARGIN = 0.03
+
+
 @dataclass(frozen=True)
 class GraphSlamParams:
-    slam: SlamParams = field(default_factory=SlamParams)
+    slam: SlamParams = field(default_factory=lambda: SlamParams(free_margin=LIDAR_FREE_MARGIN))
     loop: LoopParams = field(default_factory=LoopParams)
     loop_closure: bool = True
     submap_m: float = 8.0
@@ -40,6 +45,7 @@ class GraphSlamParams:
     loop_cloud_m: float = 4.0  # a loop query joins the scans of this much recent travel
     loop_cloud_points: int = 400
     optimize_every: int = 5  # loop edges between optimisations
+    iterations_online: int = 8  # per optimisation while mapping (the final one runs longer)
     # front-end edge: sigma = base + per metre moved (x, y) / per radian turned (theta)
     step_sigma_xy: tuple[float, float] = (0.01, 0.03)
     step_sigma_theta: tuple[float, float] = (0.003, 0.02)
@@ -111,7 +117,9 @@ class GraphSlam:
             self.graph.add_edge(prev, k, d, (sxy, sxy, sth))
         else:
             k = self.graph.add_node(Pose2D())
-        self.keyframes.append(_Keyframe(pose, self._travel, px.astype(np.float32), py.astype(np.float32)))
+        self.keyframes.append(
+            _Keyframe(pose, self._travel, px.astype(np.float32), py.astype(np.float32))
+        )
         return k
 
     def _local_cloud(self, k: int) -> tuple[FloatArray, FloatArray]:
@@ -138,9 +146,8 @@ class GraphSlam:
             return
         self._last_check = self._travel
         px, py = self._local_cloud(k)
-        poses = [self.graph.pose(i) for i in range(len(self.keyframes))]
         since = self._travel - self._last_closure
-        edges = self.loops.search(k, px, py, poses, self._travel, since)
+        edges = self.loops.search(k, px, py, self.graph.poses, self._travel, since)
         for edge in edges:
             self.graph.add_edge(edge.anchor, edge.keyframe, edge.z, p.loop_sigma, robust=True)
         if not edges:
@@ -150,14 +157,14 @@ class GraphSlam:
         self._pending += len(edges)
         self._last_closure = self._travel
         if self._pending >= p.optimize_every or gap > 2.0 * p.submap_m:
-            self.graph.optimize()
+            self.graph.optimize(iterations=p.iterations_online)
             self._pending = 0
 
     def finish(self) -> None:
-        """Final optimisation over every edge."""
-        if self._pending:
+        """Final optimisation over every edge, run to convergence."""
+        if self.loop_closures:
             t0 = time.perf_counter()
-            self.graph.optimize(iterations=20)
+            self.graph.optimize()
             self._pending = 0
             self.backend_seconds += time.perf_counter() - t0
 

@@ -38,7 +38,7 @@ class LoopParams:
     min_score: float = 0.5
     max_ambiguity: float = 0.85  # runner-up score / best score
     max_candidates: int = 2
-    max_range: float = 12.0
+    span_margin_m: float = 1.0
     agree_m: float = 0.3  # two matches agree if their corrections differ less than this
     agree_rad: float = math.radians(2.0)
     consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
@@ -85,7 +85,7 @@ class LoopCloser:
         keyframe: int,
         px: FloatArray,
         py: FloatArray,
-        poses: list[Pose2D],
+        poses: FloatArray,
         travel: float,
         since_closure: float,
     ) -> list[LoopEdge]:
@@ -94,7 +94,7 @@ class LoopCloser:
         small is accepted at once; a larger one (a first closure after a long drift, or an
         alias along a corridor) waits until a match from another keyframe implies the same
         correction, since aliases a few metres apart rarely agree."""
-        current = poses[keyframe]
+        current = _pose(poses, keyframe)
         found = self._matches(keyframe, px, py, current, poses, travel, since_closure)
         p = self.params
         self._waiting = [c for c in self._waiting if travel - c.travel <= p.consensus_m]
@@ -119,7 +119,7 @@ class LoopCloser:
         px: FloatArray,
         py: FloatArray,
         current: Pose2D,
-        anchor_pose: list[Pose2D],
+        poses: FloatArray,
         travel: float,
         since_closure: float,
     ) -> list[_Candidate]:
@@ -128,18 +128,19 @@ class LoopCloser:
             min(p.window_max_m, p.window_base_m + p.window_per_m * since_closure),
             min(p.theta_max, p.theta_base + p.theta_per_m * since_closure),
         )
-        reach = p.max_range + window.xy
         near = []
         for fin in self._submaps:
             if fin.travel > travel - p.min_travel_m:
                 continue
-            g_anchor = anchor_pose[fin.submap.anchor]
-            d = g_anchor.distance_to(current)
-            if d < reach + fin.submap.travel:
-                near.append((d, fin, g_anchor))
+            # only submaps built from around here: their scans looked where this one looks
+            span = poses[fin.submap.anchor : fin.submap.last_keyframe + 1, :2]
+            d = float(np.min(np.hypot(span[:, 0] - current.x, span[:, 1] - current.y)))
+            if d < window.xy + p.span_margin_m:
+                near.append((d, fin))
         near.sort(key=lambda t: t[0])
         edges = []
-        for _, fin, g_anchor in near[: p.max_candidates]:
+        for _, fin in near[: p.max_candidates]:
+            g_anchor = _pose(poses, fin.submap.anchor)
             sm = fin.submap
             guess = compose(sm.anchor_pose, between(g_anchor, current))
             found = fin.matcher.match(px, py, guess, window)
@@ -159,6 +160,11 @@ class LoopCloser:
             edge = LoopEdge(sm.anchor, keyframe, z, found.score, found.runner_up)
             edges.append(_Candidate(edge, travel, correction))
         return edges
+
+
+def _pose(poses: FloatArray, k: int) -> Pose2D:
+    x, y, th = poses[k]
+    return Pose2D(float(x), float(y), float(th))
 
 
 def _agree(a: _Candidate, b: _Candidate, p: LoopParams) -> bool:

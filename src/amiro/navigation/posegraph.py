@@ -38,7 +38,7 @@ class _Edges:
 class PoseGraph:
     """Nodes are added in order; edges carry diagonal standard deviations (x, y, theta)."""
 
-    def __init__(self, cauchy_scale: float = 1.0) -> None:
+    def __init__(self, cauchy_scale: float = 3.0) -> None:
         self.poses = np.zeros((0, 3))
         self.cauchy_scale = cauchy_scale  # in standard deviations
         self._edges = _Edges()
@@ -71,7 +71,7 @@ class PoseGraph:
         x, y, th = self.poses[k]
         return Pose2D(float(x), float(y), float(th))
 
-    def optimize(self, iterations: int = 10, tol: float = 1e-6) -> float:
+    def optimize(self, iterations: int = 50, tol: float = 1e-4) -> float:
         """Levenberg-Marquardt from the current poses; returns the final weighted cost."""
         if self.edge_count == 0 or len(self.poses) < 2:
             return 0.0
@@ -100,17 +100,19 @@ class PoseGraph:
             trial[1:] += step
             trial[:, 2] = _wrap(trial[:, 2])
             new_cost = self._cost(trial, ii, jj, z, sqrt_info, robust, scale)
+            converged = False
             if new_cost < cost:
-                improvement = (cost - new_cost) / max(cost, 1e-12)
-                self.poses, lam = trial, max(lam / 10.0, 1e-7)
-                if improvement < tol and scale <= self.cauchy_scale:
-                    break
+                converged = (cost - new_cost) / max(cost, 1e-12) < tol
+                self.poses, cost, lam = trial, new_cost, max(lam / 10.0, 1e-7)
             else:
                 lam *= 10.0
-                if lam > 1e6:
+                converged = lam > 1e6
+            if converged:  # settled at this scale: tighten it, or stop at the final one
+                if scale <= self.cauchy_scale:
                     break
-            scale = max(self.cauchy_scale, scale * 0.3)
-            cost = self._cost(self.poses, ii, jj, z, sqrt_info, robust, scale)
+                scale = max(self.cauchy_scale, scale * 0.3)
+                lam = 1e-4
+                cost = self._cost(self.poses, ii, jj, z, sqrt_info, robust, scale)
         return cost
 
     def _robust_sq(

@@ -34,7 +34,7 @@ class SlamParams:
     update_min_d: float = 0.1  # map update only after this much motion (m / rad)
     update_min_a: float = 0.1
     odom_weight: float = 20.0  # prior strength on the odometry guess (per level, scaled)
-    free_margin: float = 0.03  # 3 sigma of the lidar's range noise (1 % of the range)
+    free_margin: float = 0.0  # fraction of the range (see LogOddsGrid); 0: one cell
 
 
 class HectorSlam:

@@ -11,7 +11,7 @@ import numpy as np
 
 from amiro.core.gridmap import save_map
 from amiro.navigation.carmen import read_carmen
-from amiro.navigation.graph_slam import GraphSlam, GraphSlamParams
+from amiro.navigation.graph_slam import LIDAR_FREE_MARGIN, GraphSlam, GraphSlamParams
 from amiro.navigation.metrics import ate_rmse
 from amiro.navigation.slam import SlamParams
 
@@ -25,7 +25,10 @@ def run_slam(
 ) -> dict[str, Any]:
     scans = read_carmen(log)
     slam = GraphSlam(
-        GraphSlamParams(slam=SlamParams(max_range=max_range), loop_closure=loop_closure)
+        GraphSlamParams(
+            slam=SlamParams(max_range=max_range, free_margin=LIDAR_FREE_MARGIN),
+            loop_closure=loop_closure,
+        )
     )
     fov = math.radians(fov_deg)
     t0 = time.perf_counter()  # wall time only to measure speed
@@ -39,7 +42,8 @@ def run_slam(
     with (out_dir / "trajectory.csv").open("w", encoding="utf-8") as fh:
         fh.write("timestamp,x,y,theta\n")
         fh.writelines(
-            f"{s.timestamp:.3f},{p.x:.4f},{p.y:.4f},{p.theta:.5f}\n" for s, p in zip(scans, poses)
+            f"{s.timestamp:.3f},{p.x:.4f},{p.y:.4f},{p.theta:.5f}\n"
+            for s, p in zip(scans, poses, strict=True)
         )
     est = np.array([[p.x, p.y] for p in poses])
     ref = np.array([[s.reference.x, s.reference.y] for s in scans])

@@ -17,8 +17,8 @@ import numpy.typing as npt
 
 from amiro.core.messages import Pose2D
 from amiro.navigation.occupancy import LogOddsGrid
-from amiro.navigation.slam import SlamParams, match_scan
 from amiro.navigation.poses import between, compose
+from amiro.navigation.slam import SlamParams, match_scan
 
 FloatArray = npt.NDArray[np.float64]
 

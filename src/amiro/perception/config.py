@@ -25,6 +25,21 @@ class SimDetectorSection(Section):
     duplicate_share: float = Field(default=0.3, ge=0.0, le=1.0)
     false_positives_per_frame: float = Field(default=0.005, ge=0.0)
     box_jitter: float = Field(default=0.03, ge=0.0, description="sigma, fraction of box size")
+    # Household objects: the paper measured people only, so these are plausible figures
+    # for a COCO-trained detector, not the paper's.
+    object_recall: dict[str, float] = Field(
+        default_factory=lambda: {
+            "cup": 0.6,
+            "bottle": 0.7,
+            "chair": 0.9,
+            "couch": 0.95,
+            "bed": 0.95,
+            "dining table": 0.8,
+        },
+        description="share of objects found at 2 m, by label",
+    )
+    object_recall_loss_per_m: float = Field(default=0.1, ge=0.0, description="beyond 2 m")
+    min_object_px: float = Field(default=8.0, ge=0.0, description="smaller boxes are missed")
 
 
 class FaceSection(Section):
@@ -53,6 +68,9 @@ class PerceptionConfig(Section):
         description="sim: simulated detector + faces + estimator + tracker; oracle: ground truth",
     )
     estimator: Literal["improved", "paper"] = "improved"
+    objects_file: Path | None = Field(
+        default=None, description="small household objects per home; default: amiro's own"
+    )
     position_noise_m: float = Field(default=0.1, ge=0.0, description="oracle backend only")
     detector: SimDetectorSection = Field(default_factory=SimDetectorSection)
     faces: FaceSection = Field(default_factory=FaceSection)

@@ -56,20 +56,16 @@ def densest_cluster(values: FloatArray, width: float) -> npt.NDArray[np.bool_]:
 
 def torso_depth(
     depth: FloatArray, box: BoundingBox2D, scale: float, sigma_per_m2: float = 1.4e-3
-) -> tuple[float, float, float] | None:
-    """(z-depth, u, v) of the torso: the median inlier depth, the median inlier column (robust
-    to a box clipped by the image border) and the box centre row, in RGB pixels; None when
-    the region holds no valid depth."""
+) -> tuple[float, float] | None:
+    """(z-depth, u) of the torso: the median inlier depth and the median inlier column (in
+    RGB pixels; robust to a box clipped by the image border); None when the region holds
+    no valid depth."""
     values, us, _ = region(depth, box, scale, TORSO_COLUMNS, TORSO_ROWS)
     rough = float(np.median(values[values > 0])) if (values > 0).any() else 0.0
     if rough <= 0:
         return None
     inliers = densest_cluster(values, max(0.15, 6.0 * sigma_per_m2 * rough * rough))
-    return (
-        float(np.median(values[inliers])),
-        float(np.median(us[inliers])),
-        box.cy,
-    )
+    return float(np.median(values[inliers])), float(np.median(us[inliers]))
 
 
 def centre_depth(depth: FloatArray, box: BoundingBox2D, scale: float) -> float:

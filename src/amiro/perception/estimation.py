@@ -118,3 +118,40 @@ def improved(
     x = geom.mount_forward * cy + forward * cy - left * sy
     y = geom.mount_forward * sy + forward * sy + left * cy
     return base_to_map(np.stack([x, y, geom.mount_height + up], axis=1), views)
+
+
+# Heights (m) that complete a body the image border cut: people stand or sit on the floor,
+# and a body cut at the top of the image is a standing adult's.
+FLOOR_HEIGHT = 0.0
+STANDING_HEIGHT = 1.70
+CLIP_MARGIN = 0.01  # a box edge this near the border (share of the image height) is cut
+
+
+def body_centre_row(
+    geom: CameraGeometry,
+    top: FloatArray,
+    bottom: FloatArray,
+    z_depth: FloatArray,
+    head_pitch: FloatArray,
+) -> FloatArray:
+    """The image row of the body's vertical centre for boxes spanning rows ``top`` to
+    ``bottom`` at ``z_depth``.  The box centre, unless the image border cut the box (a person
+    close to the camera): the cut end is then completed with the floor (bottom) or a
+    standing person's height (top), so the estimate is not pulled to the camera's height."""
+    cp, sp = np.cos(head_pitch), np.sin(head_pitch)
+
+    def height(v: FloatArray) -> FloatArray:
+        down = (v - geom.cy) / geom.fy * z_depth
+        return geom.mount_height - z_depth * sp - down * cp
+
+    def row(z: FloatArray) -> FloatArray:
+        down = (geom.mount_height - z - z_depth * sp) / cp
+        return geom.cy + geom.fy * down / np.maximum(z_depth, 1e-6)
+
+    margin = CLIP_MARGIN * geom.height
+    z_top, z_bottom = height(top), height(bottom)
+    z_top = np.where(top <= margin, np.maximum(z_top, STANDING_HEIGHT), z_top)
+    z_bottom = np.where(
+        bottom >= geom.height - margin, np.minimum(z_bottom, FLOOR_HEIGHT), z_bottom
+    )
+    return row(0.5 * (z_top + z_bottom))

@@ -19,7 +19,14 @@ from amiro.core.messages import BoundingBox2D, Point
 from amiro.perception import paper_tables as paper
 from amiro.perception.config import SimDetectorSection
 from amiro.perception.depth import centre_depth, torso_depth
-from amiro.perception.estimation import CameraGeometry, FloatArray, Views, improved, paper_formula
+from amiro.perception.estimation import (
+    CameraGeometry,
+    FloatArray,
+    Views,
+    body_centre_row,
+    improved,
+    paper_formula,
+)
 from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector, iou
 from amiro.sim.camera import Camera
@@ -82,8 +89,8 @@ def score_batch(
 ) -> None:
     n = len(batch.box)
     count = np.zeros(n)
-    pixels = np.full((n, 5), np.nan)  # paper u, v, d; improved z, plus the improved u, v
-    improved_uv = np.full((n, 2), np.nan)
+    paper_px = np.full((n, 3), np.nan)  # the paper's u, v and centre depth reading
+    torso = np.full((n, 4), np.nan)  # the improved estimator's z-depth, u, box top, bottom
     for i in range(n):
         obs = observation(batch, i)
         detections = detector.detect(Frame(observations=[obs]))
@@ -92,24 +99,24 @@ def score_batch(
         if not scored or max(s for s, _ in scored) < MIN_IOU:
             continue
         box = max(scored, key=lambda s: s[0])[1]
+        paper_px[i] = box.cx, box.cy, centre_depth(batch.depth[i], box, batch.depth_scale)
         started = wall_seconds()
-        torso = torso_depth(batch.depth[i].astype(np.float64), box, batch.depth_scale, depth_sigma)
+        found = torso_depth(batch.depth[i].astype(np.float64), box, batch.depth_scale, depth_sigma)
         results.estimate_s += wall_seconds() - started
-        pixels[i, :3] = box.cx, box.cy, centre_depth(batch.depth[i], box, batch.depth_scale)
-        if torso is not None:
-            pixels[i, 3] = torso[0]
-            improved_uv[i] = torso[1:]
-    ok = ~np.isnan(pixels[:, 0])
+        if found is not None:
+            torso[i] = *found, box.cy - box.height / 2, box.cy + box.height / 2
+    ok = ~np.isnan(paper_px[:, 0])
     paper_err = np.full((n, 3), np.nan)
     improved_err = np.full((n, 3), np.nan)
     views = _rows(batch.views, ok)
     paper_err[ok] = (
-        paper_formula(geom, pixels[ok, 0], pixels[ok, 1], pixels[ok, 2], views) - batch.truth[ok]
+        paper_formula(geom, paper_px[ok, 0], paper_px[ok, 1], paper_px[ok, 2], views)
+        - batch.truth[ok]
     )
     started = wall_seconds()
-    estimate = improved(
-        geom, improved_uv[ok, 0], improved_uv[ok, 1], pixels[ok, 3], views, SURFACE_TO_CENTRE_M
-    )
+    z_depth, u, top, bottom = torso[ok].T
+    row = body_centre_row(geom, top, bottom, z_depth, views.head_pitch)
+    estimate = improved(geom, u, row, z_depth, views, SURFACE_TO_CENTRE_M)
     results.estimate_s += wall_seconds() - started
     results.estimated += int(ok.sum())
     improved_err[ok] = estimate - batch.truth[ok]

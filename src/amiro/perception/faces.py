@@ -9,6 +9,7 @@ a resident.
 from __future__ import annotations
 
 import importlib
+import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -74,7 +75,9 @@ class DlibFaceEmbedder:
 
     def __init__(self, model: str = "hog", upsample: int = 1) -> None:
         try:
-            face_recognition = importlib.import_module("face_recognition")
+            with warnings.catch_warnings():  # face_recognition_models still uses pkg_resources
+                warnings.filterwarnings("ignore", "pkg_resources is deprecated", UserWarning)
+                face_recognition = importlib.import_module("face_recognition")
         except ImportError as exc:
             raise ConfigError(
                 f"the dlib face backend needs face_recognition and dlib-bin: {exc}"

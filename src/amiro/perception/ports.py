@@ -10,6 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from amiro.core.messages import Detection2D, Point
+from amiro.perception.sim_objects import ObjectObservation
 from amiro.sim.messages import CameraObservation
 
 
@@ -29,6 +30,21 @@ class SeenPerson:
     face_backlit: bool = False
 
 
+@dataclass(frozen=True)
+class SeenObject:
+    """A household object seen now (COCO label) and its centre in the map frame."""
+
+    label: str
+    position: Point
+    confidence: float
+
+
+class ObjectFinder(Protocol):
+    def look(self) -> list[SeenObject]:
+        """The household objects the robot's camera sees at this moment."""
+        ...
+
+
 class PeopleFinder(Protocol):
     def look(self) -> list[SeenPerson]:
         """Who the robot's camera sees at this moment."""
@@ -38,10 +54,12 @@ class PeopleFinder(Protocol):
 @dataclass(frozen=True, eq=False)
 class Frame:
     """One camera frame for a detector: the RGB pixels (H, W, 3 uint8) when a real camera
-    or renderer gives them, and the simulator's observations when it does not."""
+    or renderer gives them, and the simulator's observations (people, objects) when it
+    does not."""
 
     rgb: npt.NDArray[np.uint8] | None = None
     observations: Sequence[CameraObservation] = field(default_factory=tuple)
+    objects: Sequence[ObjectObservation] = field(default_factory=tuple)
 
 
 class Detector(Protocol):

@@ -2,18 +2,22 @@
 
 The paper (Tables 11–13) counts detections per image: people lying down are missed or split
 in two far more often than anyone else, errors grow with distance, and a few false positives
-appear.  This backend reproduces those counting errors on the simulator's observations.
+appear.  This backend reproduces those counting errors on the simulator's observations of
+people; household objects are found with a recall by label that falls with distance.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import Protocol, TypeVar
 
 import numpy as np
 
 from amiro.core.messages import BoundingBox2D, Detection2D
 from amiro.perception.config import SimDetectorSection
 from amiro.perception.ports import Frame
+from amiro.perception.sim_objects import ObjectObservation
 from amiro.sim.messages import CameraObservation
 
 
@@ -23,7 +27,8 @@ def distance_factor(distance: float) -> float:
 
 
 class SimDetector:
-    """Person boxes from observations: jittered, sometimes missed or duplicated."""
+    """Boxes from observations: people jittered, sometimes missed or duplicated; objects
+    found by label and distance."""
 
     def __init__(
         self,
@@ -42,6 +47,9 @@ class SimDetector:
         found: list[Detection2D] = []
         for obs in frame.observations:
             found.extend(self._person(obs))
+        for obj in frame.objects:
+            if self.rng.random() < self.object_recall(obj):
+                found.append(self._object(obj))
         for _ in range(int(self.rng.poisson(self.cfg.false_positives_per_frame))):
             found.append(self._false_positive())
         return found
@@ -66,11 +74,35 @@ class SimDetector:
         upper = BoundingBox2D(b.cx, b.cy - b.height / 4, b.width, b.height / 2)
         return [Detection2D("person", score, box), Detection2D("person", 0.8 * score, upper)]
 
+    def object_recall(self, obj: ObjectObservation) -> float:
+        """Chance to find ``obj``: by label, falling with distance; none when tiny."""
+        if min(obj.bbox.width, obj.bbox.height) < self.cfg.min_object_px:
+            return 0.0
+        recall = self.cfg.object_recall.get(obj.label, 0.0)
+        return max(recall - self.cfg.object_recall_loss_per_m * max(obj.depth - 2.0, 0.0), 0.0)
+
+    def _object(self, obj: ObjectObservation) -> Detection2D:
+        score = 0.9 - 0.05 * obj.depth + 0.03 * self.rng.standard_normal()
+        return Detection2D(obj.label, float(np.clip(score, 0.3, 1.0)), self._jitter(obj.bbox))
+
     def _jitter(self, b: BoundingBox2D) -> BoundingBox2D:
+        """Noisy edges, except where the person runs off the image: a detector sees the
+        body reach the border there."""
         j = self.cfg.box_jitter * self.rng.standard_normal(4)
         w = max(b.width * (1 + j[2]), 1.0)
         h = max(b.height * (1 + j[3]), 1.0)
-        return BoundingBox2D(b.cx + j[0] * b.width, b.cy + j[1] * b.height, w, h)
+        cx, cy = b.cx + j[0] * b.width, b.cy + j[1] * b.height
+        u0, v0, u1, v1 = cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2
+        if b.cx - b.width / 2 <= 0.0:
+            u0 = 0.0
+        if b.cy - b.height / 2 <= 0.0:
+            v0 = 0.0
+        if b.cx + b.width / 2 >= self.width:
+            u1 = float(self.width)
+        if b.cy + b.height / 2 >= self.height:
+            v1 = float(self.height)
+        jittered = BoundingBox2D((u0 + u1) / 2, (v0 + v1) / 2, u1 - u0, v1 - v0)
+        return clip_box(jittered, self.width, self.height)
 
     def _false_positive(self) -> Detection2D:
         h = float(self.rng.uniform(0.15, 0.6)) * self.height
@@ -78,6 +110,16 @@ class SimDetector:
         cx = float(self.rng.uniform(w / 2, self.width - w / 2))
         cy = float(self.rng.uniform(h / 2, self.height - h / 2))
         return Detection2D("person", float(self.rng.uniform(0.3, 0.6)), BoundingBox2D(cx, cy, w, h))
+
+
+def clip_box(b: BoundingBox2D, width: int, height: int) -> BoundingBox2D:
+    """The part of ``b`` inside a ``width`` x ``height`` image (at least one pixel), as a
+    real detector reports it."""
+    u0 = min(max(b.cx - b.width / 2, 0.0), width - 1.0)
+    v0 = min(max(b.cy - b.height / 2, 0.0), height - 1.0)
+    u1 = min(max(b.cx + b.width / 2, u0 + 1.0), float(width))
+    v1 = min(max(b.cy + b.height / 2, v0 + 1.0), float(height))
+    return BoundingBox2D((u0 + u1) / 2, (v0 + v1) / 2, u1 - u0, v1 - v0)
 
 
 def iou(a: BoundingBox2D, b: BoundingBox2D) -> float:
@@ -93,9 +135,17 @@ def iou(a: BoundingBox2D, b: BoundingBox2D) -> float:
     return inter / union if union > 0 else 0.0
 
 
+class Boxed(Protocol):
+    @property
+    def bbox(self) -> BoundingBox2D: ...
+
+
+BoxedT = TypeVar("BoxedT", bound=Boxed)
+
+
 def best_match(
-    box: BoundingBox2D, observations: list[CameraObservation], min_iou: float = 0.2
-) -> CameraObservation | None:
+    box: BoundingBox2D, observations: Sequence[BoxedT], min_iou: float = 0.2
+) -> BoxedT | None:
     """The observation whose box overlaps ``box`` most (at least ``min_iou``)."""
     scored = [(iou(box, o.bbox), i) for i, o in enumerate(observations)]
     best = max(scored, default=(0.0, -1))

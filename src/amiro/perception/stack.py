@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from amiro.core.messages import Detection2D, Point
+from amiro.core.messages import BoundingBox2D, Detection2D, Point
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.estimation import (
     CameraGeometry,
     FloatArray,
     Views,
+    body_centre_row,
     improved,
     paper_formula,
 )
@@ -37,10 +38,7 @@ class SimPeopleFinder:
     def __init__(self, sim: Simulation, rng: np.random.Generator, cfg: PerceptionConfig) -> None:
         self.sim = sim
         self.cfg = cfg
-        camera = sim.residents.camera
-        self.geometry = CameraGeometry.from_info(
-            camera.info(0.0), camera.params.height, camera.params.forward
-        )
+        self.geometry = camera_geometry(sim)
         rng_detect, rng_face, self.rng = rng.spawn(3)
         self.detector = SimDetector(
             rng_detect, cfg.detector, (self.geometry.width, self.geometry.height)
@@ -75,11 +73,7 @@ class SimPeopleFinder:
             ]
         )
         names = {id(o): self.faces.identify(o) for o in matched if o is not None}
-        points = self.estimate(
-            np.array([d.bbox.cx for d in detections]),
-            np.array([d.bbox.cy for d in detections]),
-            depth,
-        )
+        points = self.estimate([d.bbox for d in detections], depth)
         return [
             Measurement(
                 Point(*map(float, p)),
@@ -90,14 +84,28 @@ class SimPeopleFinder:
             for d, o, p in zip(detections, matched, points, strict=True)
         ]
 
-    def estimate(self, u: FloatArray, v: FloatArray, depth: FloatArray) -> FloatArray:
-        """Map-frame points of detections at pixels (u, v) with depth readings."""
-        robot = self.sim.robot
-        pose = robot.true_pose  # stands for the localisation estimate until AMCL lands
-        views = Views.single(pose.x, pose.y, pose.theta, robot.head_yaw, robot.head_pitch, len(u))
+    def estimate(self, boxes: list[BoundingBox2D], depth: FloatArray) -> FloatArray:
+        """Map-frame points of the people in ``boxes`` at their depth readings."""
+        views = robot_views(self.sim, len(boxes))
+        u = np.array([b.cx for b in boxes])
+        v = np.array([b.cy for b in boxes])
         if self.cfg.estimator == "paper":
             return paper_formula(self.geometry, u, v, depth, views)
-        return improved(self.geometry, u, v, depth, views)
+        half = np.array([b.height / 2 for b in boxes])
+        row = body_centre_row(self.geometry, v - half, v + half, depth, views.head_pitch)
+        return improved(self.geometry, u, row, depth, views)
+
+
+def robot_views(sim: Simulation, n: int) -> Views:
+    """The robot's pose and head joints now, for ``n`` detections."""
+    robot = sim.robot
+    pose = robot.true_pose  # stands for the localisation estimate until AMCL lands
+    return Views.single(pose.x, pose.y, pose.theta, robot.head_yaw, robot.head_pitch, n)
+
+
+def camera_geometry(sim: Simulation) -> CameraGeometry:
+    camera = sim.residents.camera
+    return CameraGeometry.from_info(camera.info(0.0), camera.params.height, camera.params.forward)
 
 
 def build_people_finder(

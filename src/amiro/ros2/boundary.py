@@ -12,6 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from amiro.core.bus import Bus
+from amiro.core.messages import Odometry, Pose2D
 from amiro.core.node import Node
 from amiro.sim.messages import CameraObservation
 
@@ -66,3 +67,20 @@ class ObservationFeed:
 
     def observe(self) -> list[CameraObservation]:
         return list(self.latest.observations)
+
+
+class NavigationState:
+    """Edge side, when MoveTo runs in the robot process: the pose and velocity the
+    behaviour tasks read from the navigation module, fed from bridged topics instead."""
+
+    def __init__(self, bus: Bus, pose_topic: str) -> None:
+        self.pose: Pose2D | None = None
+        self.velocity = (0.0, 0.0, 0.0)
+        bus.subscribe(pose_topic, Pose2D, self._on_pose, depth=1)
+        bus.subscribe("/odom", Odometry, self._on_odom, depth=1)
+
+    def _on_pose(self, pose: Pose2D) -> None:
+        self.pose = pose
+
+    def _on_odom(self, msg: Odometry) -> None:
+        self.velocity = (msg.twist.linear.x, msg.twist.linear.y, msg.twist.angular.z)

@@ -74,6 +74,15 @@ class NodeConfig(Section):
     publish: tuple[str, ...] | None = None
     subscribe: tuple[str, ...] | None = None
     remap: dict[str, str] = Field(default_factory=dict)
+    serve_actions: tuple[str, ...] = Field(
+        default=(), description="actions whose server runs here, offered over ROS 2"
+    )
+    call_actions: tuple[str, ...] = Field(
+        default=(), description="actions served by another process, sent from here"
+    )
+    action_timeout_s: float = Field(
+        default=3.0, gt=0, description="a remote goal unheard of this long (sim s) aborts"
+    )
     heartbeat_s: float = Field(default=1.0, gt=0)
     watch: dict[str, float] = Field(
         default_factory=dict, description="cloud: process name -> heartbeat timeout (s)"

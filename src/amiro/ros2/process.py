@@ -12,6 +12,7 @@ import logging
 import signal
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import asdict
 from pathlib import Path
 from types import FrameType
 from typing import Any, TextIO
@@ -22,10 +23,13 @@ from amiro.core.clock import Clock, SimClock, wall_seconds
 from amiro.core.config import ConfigError, load
 from amiro.core.messages import Acknowledgement, BehaviorEvent
 from amiro.core.runtime import Runtime
+from amiro.ros2.actions import ActionExporter, RemoteActionServer
 from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
 from amiro.ros2.config import NodeConfig
 from amiro.ros2.context import RosContext
+from amiro.ros2.endpoint import WireEndpoint
+from amiro.ros2.interfaces import known_action
 from amiro.ros2.roles import BUILDERS
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import SystemConfig
@@ -94,12 +98,18 @@ def run_process(
 ) -> dict[str, Any]:
     """Run one process until its stop condition or a signal; returns its report."""
     cfg = system_config(node, seed)
+    served = [known_action(name) for name in node.serve_actions]
+    called = [known_action(name) for name in node.call_actions]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
     clock: Clock = SimClock(speed=node.speed) if node.role == "sim" else FollowedClock(ros)
     runtime = Runtime(clock, seed=seed)
     bridge = runtime.add(
         Ros2Bridge(ros, node.topics_out(), node.topics_in(), node.remap, name="ros2_bridge")
     )
+    endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, spec)) for spec in served]
+    endpoints += [
+        runtime.add(RemoteActionServer(ros, spec, node.action_timeout_s)) for spec in called
+    ]
     parts = BUILDERS[node.role](runtime, process, node, cfg)
     out = events_path.open("a", encoding="utf-8") if events_path is not None else None
     events = EventLog(runtime, out)
@@ -127,6 +137,7 @@ def run_process(
             "errors": bridge.stats.errors,
             "skipped": bridge.skipped,
         },
+        "actions": {e.name: asdict(e.stats) for e in endpoints},
         "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in events.acks],
         "events": events.events,
         **parts.summary(),

@@ -24,9 +24,11 @@ from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
+from amiro.navigation.localization import GROUND_TRUTH_TOPIC, LOCALIZATION_TOPIC
+from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToNode
 from amiro.navigation.stack import build_navigation
 from amiro.perception.oracle import OraclePeopleFinder
-from amiro.ros2.boundary import ObservationFeed, ObservationPublisher
+from amiro.ros2.boundary import NavigationState, ObservationFeed, ObservationPublisher
 from amiro.ros2.config import NodeConfig
 from amiro.ros2.health import HeartbeatNode, NotificationLedger, Watchdog
 from amiro.sim.simulator import Simulation, build_sim
@@ -52,10 +54,22 @@ class RoleParts:
     summary: Callable[[], dict[str, Any]]
 
 
+def _navigation(runtime: Runtime, cfg: SystemConfig, world: World) -> MoveToNode:
+    places = {name: world.place(name) for name in world.home.places}
+    return runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+
+
+def _pose_topic(cfg: SystemConfig) -> str:
+    """Where the robot's pose estimate is published (what MoveTo itself listens to)."""
+    return GROUND_TRUTH_TOPIC if cfg.navigation.localization == "oracle" else LOCALIZATION_TOPIC
+
+
 def build_sim_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
     sim = build_sim(runtime, cfg.sim)
+    if MOVE_TO_ACTION in node.serve_actions:  # navigation next to the robot, driven remotely
+        _navigation(runtime, cfg, sim.world)
     runtime.add(ObservationPublisher(sim.observe))
     grid = load_map(nav_map_path(cfg)).to_occupancy_grid(0.0)
     runtime.add(MapPublisher(grid))
@@ -76,8 +90,11 @@ def build_edge_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
     world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
-    places = {name: world.place(name) for name in world.home.places}
-    navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    navigation: MoveToNode | NavigationState = (
+        NavigationState(runtime.bus, _pose_topic(cfg))
+        if MOVE_TO_ACTION in node.call_actions
+        else _navigation(runtime, cfg, world)
+    )
     feed = ObservationFeed(runtime.bus)
     remote_sim = cast(Simulation, feed)  # the oracles only call observe()
     rng_perception, rng_activity = runtime.rng.spawn(2)

@@ -4,7 +4,8 @@ Maria is on the living-room couch; the robot starts at its dock in the hallway a
 as its map shows, that every door is open.  By default the hallway–living-room door is closed:
 the lidar sees it on the way, the plan no longer holds, and the robot re-plans.  John, in the
 hallway, is asked to open it; with ``help=False`` he declines and the robot re-plans again,
-through the kitchen.  With every way in closed, planning fails and says why.
+through the kitchen.  With every way in closed, planning fails and says why.  What the robot
+says (the notification, its requests) is in ``lang``.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.behavior.planning.dispatch import OPEN_DOOR_REQUEST
 from amiro.behavior.planning.executive import PlanExecutive
 from amiro.behavior.planning.knowledge import KnowledgeBase
 from amiro.behavior.planning.knowledge_node import KnowledgeNode
@@ -19,16 +21,14 @@ from amiro.behavior.planning.planner import Engine, HomePlanner, PlanningConfig
 from amiro.behavior.planning.problem import Goal
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError
+from amiro.dialogue.phrases import check_language, phrase
 from amiro.scenarios.common import base_config_data, run_scenario
-from amiro.sim.door_help import OPEN_DOOR_REQUEST
 from amiro.system import System, SystemConfig
 
 PERSON, HELPER = "maria", "john"
 KNOWN_ROOMS = {PERSON: "living_room", HELPER: "hallway"}
 HELPER_POSE = {"x": 2.4, "y": 4.6, "theta": 0.0}
-MESSAGE = "Maria, your daughter called: she will visit you this afternoon."
-OPEN_DOOR_TEXT = "John, could you please open the door for me?"
-CLEAR_TEXT = "John, could you please move what is in my way?"
+MESSAGE = "notification_visit"  # phrase key
 
 
 @dataclass(frozen=True)
@@ -41,6 +41,8 @@ class DeliveryOptions:
     speed: float | None = None
     config_path: str | None = None
     timeout_s: float = 900.0
+    lang: str = "en"
+    check_activity: str | None = None  # also check that Maria does this (e.g. play_phone)
 
 
 def scenario_config(opts: DeliveryOptions) -> SystemConfig:
@@ -64,7 +66,10 @@ def scenario_config(opts: DeliveryOptions) -> SystemConfig:
 def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
     """Plan, deliver, re-plan as the home turns out to differ from the map; the report has the
     contract's keys plus the plans and what the robot learned."""
+    if opts.speed is not None and opts.speed <= 0:
+        raise ConfigError(f"--speed must be positive, got {opts.speed}")
     cfg = scenario_config(opts)
+    lang = check_language(opts.lang)
     parts: dict[str, Any] = {}
 
     def setup(system: System) -> None:
@@ -90,14 +95,16 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
                 world.room_at,
             )
         )
+        goals = [Goal("notified", PERSON)]
+        if opts.check_activity is not None:
+            goals.append(Goal("activity_checked", PERSON))
         executive.request(
-            [Goal("notified", PERSON)],
+            goals,
             {
                 "person": PERSON,
-                "message": MESSAGE,
-                "open_door_text": OPEN_DOOR_TEXT,
-                "clear_text": CLEAR_TEXT,
-                "lang": "en",
+                "message": phrase(MESSAGE, lang, {"name": PERSON.title()}),
+                "activity": opts.check_activity,
+                "lang": lang,
             },
             behavior="deliver_notification",
         )
@@ -120,6 +127,7 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
         "seed": opts.seed,
         "closed_doors": list(opts.closed_doors),
         "help": opts.help,
+        "check_activity": opts.check_activity,
         **done.timing(),
         "steps": [r.to_dict() for run in executive.runs for r in run.records],
         "plans": [p.to_dict() for p in executive.plans],

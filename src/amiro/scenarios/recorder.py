@@ -67,6 +67,13 @@ _NARRATION: dict[str, Callable[[dict[str, Any]], str]] = {
     "search_room": lambda e: f"    not seen here; going to look in the {e.get('room')}",
     "activity_recognised": lambda e: f"    saw {e.get('person')} {e.get('activity')}",
     "ack": lambda e: f"    acknowledged {e.get('id')} to the smart home: {e.get('status')}",
+    "plan": lambda e: (
+        f"Plan {e.get('number')} ({e.get('engine')}, {e.get('planning_ms')} ms): "
+        f"{e.get('summary') or ', '.join(e.get('steps') or [])}"
+    ),
+    "replan": lambda e: f"Re-planning: {e.get('reason')}",
+    "plan_failed": lambda e: f"No plan: {e.get('explanation')}",
+    "plan_completed": lambda e: f"Errand completed ({e.get('plans')} plan(s))",
 }
 
 

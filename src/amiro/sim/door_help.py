@@ -1,7 +1,8 @@
 """A resident asked to open a door does so: the closed door nearest to them opens.
 
-The robot asks with a Say whose act is :data:`OPEN_DOOR_REQUEST`; a resident whose script
-confirms walks over and opens it :data:`DOOR_OPENING_S` after answering.
+The robot asks with a Say whose act is :data:`OPEN_DOOR_REQUEST` (the key of the request in
+``phrases.yaml``, whatever the language); a resident whose script confirms walks over and
+opens it :data:`DOOR_OPENING_S` after answering.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import math
 from amiro.sim.residents import Resident
 from amiro.sim.world import World
 
-OPEN_DOOR_REQUEST = "open_door_request"
+OPEN_DOOR_REQUEST = "open_door_request"  # the dialogue act, as the planner's dispatch sends it
 DOOR_OPENING_S = 4.0
 
 

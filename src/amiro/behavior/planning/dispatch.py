@@ -3,7 +3,9 @@
 Each task's id names its action (``a2_cross``), so the executive reading the engine's events
 knows which action succeeded or failed.  Composite actions use :class:`Sequence` of the
 paper's tasks: crossing a door is a lidar check then a MoveTo to the far side; asking for
-help is a Say, a Listen and a wait for the door to be seen open.
+help is a Say, a Listen and a wait for the door to be seen open.  Requests are phrases of
+``phrases.yaml`` in the behaviour's language (blackboard ``lang``), and the phrase key is the
+dialogue act, so a listener (a resident of the simulator) knows what it is asked.
 """
 
 from __future__ import annotations
@@ -17,7 +19,10 @@ from amiro.behavior.planning.planner import PlanStep
 from amiro.behavior.planning.problem import START, RobotState
 from amiro.behavior.planning.topology import Topology
 from amiro.behavior.task import Task, make_task
-from amiro.sim.door_help import OPEN_DOOR_REQUEST
+from amiro.dialogue.phrases import phrase
+
+OPEN_DOOR_REQUEST = "open_door_request"  # phrase key and dialogue act
+CLEAR_REQUEST = "clear_request"
 
 STEP_FAILED = End("step_failed")
 APPROACH_M = 1.2
@@ -47,7 +52,13 @@ class _Positions:
         return {"x": x1, "y": y1, "theta": math.atan2(y1 - y0, x1 - x0)}
 
 
-def _task_for(step: PlanStep, where: _Positions) -> Task:
+def _request(key: str, person: str, lang: str) -> dict[str, Any]:
+    """Say the request ``key`` to ``person`` (ids are lower-case names)."""
+    text = phrase(key, lang, {"name": person.title()})
+    return _spec("Say", text=text, act=key, to=person, lang=lang)
+
+
+def _task_for(step: PlanStep, where: _Positions, lang: str) -> Task:
     a = step.args
     if step.action == "move":
         return make_task("MoveTo", {"target": where.pose(a[0], a[1])})
@@ -63,13 +74,9 @@ def _task_for(step: PlanStep, where: _Positions) -> Task:
             },
         )
     if step.action in ("ask_open_door", "ask_clear"):
-        person = a[0]
         opening = step.action == "ask_open_door"
-        request, act = (
-            ("$open_door_text", OPEN_DOOR_REQUEST) if opening else ("$clear_text", "clear_request")
-        )
         steps = [
-            _spec("Say", text=request, act=act, to=person),
+            _request(OPEN_DOOR_REQUEST if opening else CLEAR_REQUEST, a[0], lang),
             _spec("Listen", expect=["affirm"], timeout_s=10.0),
         ]
         if step.action == "ask_open_door":
@@ -108,9 +115,10 @@ def plan_graph(
     """The behaviour that executes ``steps`` in order (temporal plans by start time)."""
     ordered = sorted(steps, key=lambda s: s.start_s or 0.0)
     where = _Positions(topology, robot)
+    lang = str(blackboard.get("lang", "en"))
     graph = TaskGraph(name, priority, blackboard=blackboard)
     ids = [task_id(i, s) for i, s in enumerate(ordered)]
     for i, step in enumerate(ordered):
         nxt = ids[i + 1] if i + 1 < len(ids) else End("completed")
-        graph.add(ids[i], _task_for(step, where), on_success=nxt, on_failure=STEP_FAILED)
+        graph.add(ids[i], _task_for(step, where, lang), on_success=nxt, on_failure=STEP_FAILED)
     return graph

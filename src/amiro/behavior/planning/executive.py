@@ -14,6 +14,7 @@ from typing import Any
 
 from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, GraphRun
 from amiro.behavior.planning.dispatch import plan_graph, step_index
+from amiro.behavior.planning.explain import describe_plan, describe_step
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
 from amiro.behavior.planning.planner import HomePlanner, PlanOutcome, PlanStep
 from amiro.behavior.planning.problem import Goal, RobotState
@@ -123,6 +124,7 @@ class PlanExecutive(Node):
             engine=outcome.engine,
             planning_ms=round(outcome.planning_ms, 1),
             steps=[str(s) for s in outcome.steps],
+            summary=describe_plan(outcome.steps),
         )
 
     def _replan(self, reason: str) -> None:
@@ -154,7 +156,7 @@ class PlanExecutive(Node):
                 step = self._steps[index]
                 self._learn(step, detail)
                 reason = detail.get("reason") or detail.get("intent") or "failed"
-                self._replan(f"{step} failed: {reason}")
+                self._replan(f"{describe_step(step)} failed: {reason}")
         elif ev.type == "graph_finished" and ev.detail.get("outcome") == "completed":
             self.status = "completed"
             self._event("plan_completed", plans=len(self.plans))
@@ -187,13 +189,13 @@ class PlanExecutive(Node):
             if a == "ask_open_door":
                 asked.add(step.args[1])
                 if not kb.person(step.args[0]).willing:
-                    return f"{step}: {step.args[0]} will not help"
+                    return f"{step.args[0].title()} will not help"
             elif a == "cross" and step.args[0] not in asked:
                 state = kb.doors[step.args[0]]
                 if state is not DoorState.OPEN:
                     return f"door {step.args[0]} is {state} (seen on the way)"
             elif a == "move" and step.args[1] in kb.blocked:
-                return f"{step}: waypoint blocked"
+                return f"the way to {step.args[1]} is blocked"
             elif a == "approach":
                 room = kb.person(step.args[0]).room
                 if room != self._room_of(step.args[1]):

@@ -1,4 +1,4 @@
-"""Why there is no plan, in words a carer can act on.
+"""Plans and why there is no plan, in words a carer can act on.
 
 The planner only says "unsolvable"; this walks the rooms the robot believes it can reach
 (through open doors, and closed ones when someone willing to open them is on its side) and
@@ -8,8 +8,37 @@ a person nobody knows where to find.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
 from amiro.behavior.planning.problem import Goal, RobotState
+
+if TYPE_CHECKING:
+    from amiro.behavior.planning.planner import PlanStep  # planner imports this module
+
+_WORDS = {
+    "move": "go to {1}",
+    "cross": "go through {0}",
+    "ask_open_door": "ask {P} to open {1}",
+    "ask_clear": "ask {P} to clear the way to {2}",
+    "search": "look for {P} at {1}",
+    "approach": "go to {P}",
+    "deliver": "tell {P}",
+    "check_activity": "check what {P} is doing",
+}
+
+
+def describe_step(step: PlanStep) -> str:
+    """``ask_open_door(john, living_door, ...)`` → ``ask John to open living_door``."""
+    template = _WORDS.get(step.action)
+    if template is None:
+        return str(step)
+    return template.format(*step.args, P=step.args[0].title() if step.args else "")
+
+
+def describe_plan(steps: list[PlanStep]) -> str:
+    """The plan in words, moves inside a room left out: they only lead to the next action."""
+    return " → ".join(describe_step(s) for s in steps if s.action != "move") or "nothing to do"
 
 
 def reachable_rooms(kb: KnowledgeBase, start: str) -> set[str]:

@@ -1,9 +1,10 @@
 """Planning through unified-planning with the engine chosen in config.
 
-``pyperplan`` (classical, Apache-2.0) is the default; ``fast-downward`` (GPL, optional
-package ``up-fast-downward``) is a faster classical engine; ``kairos`` (``up-kairos``) plans
-with durations from distances (temporal).  When no plan exists the outcome carries an
-explanation in words (see :mod:`.explain`).
+``pyperplan`` (classical, through :mod:`.pyperplan_engine`, which keeps the grounded task
+between plans) is the default; ``fast-downward`` (GPL, optional package ``up-fast-downward``)
+is a faster classical engine; ``kairos`` (``up-kairos``) plans with durations from distances
+(temporal).  A planner keeps its engine for its life, so re-planning skips the start-up.
+When no plan exists the outcome carries an explanation in words (see :mod:`.explain`).
 """
 
 from __future__ import annotations
@@ -96,8 +97,9 @@ def engine_available(engine: str) -> bool:
     return True
 
 
-def _prepare(engine: str) -> None:
-    """Quiet credits on stdout (``--json`` owns it) and register engines UP does not list."""
+def open_engine(engine: str) -> Any:
+    """The unified-planning engine for a config name; credits quiet (``--json`` owns stdout),
+    engines UP does not list registered."""
     env = get_environment()
     env.credits_stream = None
     if not engine_available(engine):
@@ -105,13 +107,16 @@ def _prepare(engine: str) -> None:
         raise ConfigError(f"planning engine {engine} needs the package {package}")
     if engine == "kairos":
         importlib.import_module("up_kairos").register(env)
+    if engine == "pyperplan":
+        from amiro.behavior.planning import pyperplan_engine
+
+        pyperplan_engine.register(env)
+        return OneshotPlanner(name=pyperplan_engine.NAME)
+    return OneshotPlanner(name=engine)
 
 
-def solve(problem: Problem, engine: str, timeout_s: float) -> tuple[str, list[PlanStep]]:
-    _prepare(engine)
-    with OneshotPlanner(name=engine) as planner:
-        # pyperplan has no timeout and warns when given one
-        result = planner.solve(problem, timeout=None if engine == "pyperplan" else timeout_s)
+def solve(planner: Any, problem: Problem, timeout_s: float | None) -> tuple[str, list[PlanStep]]:
+    result = planner.solve(problem, timeout=timeout_s)
     if result.status not in _SOLVED or result.plan is None:
         return result.status.name, []
     return result.status.name, _steps(result.plan)
@@ -142,6 +147,7 @@ class HomePlanner:
     def __init__(self, config: PlanningConfig | None = None) -> None:
         self.config = config or PlanningConfig()
         self.domain = home_domain(self.config.temporal)
+        self._engine: Any = None  # opened on the first plan
 
     def problem(self, kb: KnowledgeBase, robot: RobotState, goals: list[Goal]) -> Problem:
         return make_problem(self.domain, kb, robot, goals, self.config.speed_mps)
@@ -149,7 +155,11 @@ class HomePlanner:
     def plan(self, kb: KnowledgeBase, robot: RobotState, goals: list[Goal]) -> PlanOutcome:
         started = time.perf_counter()
         problem = self.problem(kb, robot, goals)
-        status, steps = solve(problem, self.config.engine, self.config.timeout_s)
+        if self._engine is None:
+            self._engine = open_engine(self.config.engine)
+        # pyperplan has no timeout and warns when given one
+        timeout = None if self.config.engine == "pyperplan" else self.config.timeout_s
+        status, steps = solve(self._engine, problem, timeout)
         elapsed_ms = (time.perf_counter() - started) * 1000.0
         outcome = PlanOutcome(self.config.engine, status, elapsed_ms, steps)
         if not steps:
