@@ -66,5 +66,7 @@ def test_without_side_steps_the_backlit_face_is_never_recognised() -> None:
 def test_backlit_face_side_step_then_found() -> None:
     detail = run_search(side_steps=2)
     assert detail["result"] == "success" and detail["side_stepped"]
-    x, y = detail["position"]  # type: ignore[misc]
+    position = detail["position"]
+    assert isinstance(position, list | tuple)
+    x, y = (float(v) for v in position)
     assert math.hypot(x - 7.0, y - 0.6) < 0.3

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Point
 from amiro.core.runtime import Runtime
 from amiro.perception.config import FaceSection, PerceptionConfig
@@ -84,3 +85,10 @@ def test_oracle_stays_a_named_backend() -> None:
     _runtime, sim = sim_with_maria()
     cfg = PerceptionConfig(backend="oracle")
     assert isinstance(build_people_finder(sim, np.random.default_rng(1), cfg), OraclePeopleFinder)  # type: ignore[arg-type]
+
+
+def test_dlib_faces_need_images_the_simulator_does_not_render() -> None:
+    _runtime, sim = sim_with_maria()
+    cfg = PerceptionConfig.model_validate({"faces": {"backend": "dlib"}})
+    with pytest.raises(ConfigError, match=r"perception\.faces\.backend: dlib needs camera images"):
+        build_people_finder(sim, np.random.default_rng(1), cfg)  # type: ignore[arg-type]

@@ -33,14 +33,14 @@ class PocketsphinxRecognizer:
         bestpath = grammar == "none"
         self.decoder = Decoder(samprate=ASR_RATE, loglevel="FATAL", bestpath=bestpath)
         if grammar != "none":
-            hints = shipped_hints(lang)
+            hints, answers = shipped_hints(lang), grammar == "answers"
             for word, phones in hints.pronunciations.items():
                 if self.decoder.lookup_word(word) is None:
                     self.decoder.add_word(word, phones, False)
-            intents = ANSWER_INTENTS if grammar == "answers" else None
+            intents = ANSWER_INTENTS if answers else None
             known = self.decoder.lookup_word
             data = shipped_training_data(lang)
-            text = jsgf(data, lambda w: known(w) is not None, intents, hints)
+            text = jsgf(data, lambda w: known(w) is not None, intents, hints, chain=answers)
             self.decoder.add_jsgf_string(grammar, text)
             self.decoder.activate_search(grammar)
 

@@ -94,10 +94,13 @@ def jsgf(
     known: Callable[[str], bool],
     intents: Iterable[str] | None = None,
     hints: GrammarHints | None = None,
+    chain: bool = False,
     name: str = "amiro",
 ) -> str:
     """The grammar of ``data``'s examples (of ``intents``, default all) whose words are all
-    in the recogniser's dictionary (``known(word)``) or in the hints' pronunciations."""
+    in the recogniser's dictionary (``known(word)``) or in the hints' pronunciations.  With
+    ``chain``, two sentences may follow each other ("no, I'm not thirsty": replies to the
+    robot's questions often do), without lead words (mostly answers themselves: "okay")."""
     hints = hints or GrammarHints()
 
     def speakable(words: Iterable[str]) -> bool:
@@ -126,12 +129,15 @@ def jsgf(
     for side, phrases in (("lead", hints.lead), ("tail", hints.tail)):
         if said := [p for p in phrases if speakable(p.split())]:
             rules[side] = _alternatives(said)
-    body = " | ".join(f"<{rule}>" for rule in sorted(sentences))
+    body = "(" + " | ".join(f"<{rule}>" for rule in sorted(sentences)) + ")"
+    if chain:
+        rules.pop("lead", None)
+        body = f"{body} [{body}]"
     lead = "[<lead>] " if "lead" in rules else ""
     tail = " [<tail>]" if "tail" in rules else ""
     lines = ["#JSGF V1.0;", f"grammar {name};"]
     lines += [f"<{rule}> = {alternatives};" for rule, alternatives in rules.items()]
-    lines.append(f"public <utterance> = {lead}({body}){tail};")
+    lines.append(f"public <utterance> = {lead}{body}{tail};")
     return "\n".join(lines) + "\n"
 
 

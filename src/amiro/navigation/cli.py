@@ -41,6 +41,20 @@ def register(sub: Subcommands) -> None:
     run.add_argument("--out", default="slam_out", help="directory for map and trajectory")
     run.add_argument("--fov-deg", type=float, default=180.0, help="laser field of view")
     run.add_argument("--max-range", type=float, default=12.0, help="ignore returns beyond (m)")
+    run.add_argument(
+        "--no-loop-closure", action="store_true", help="front end only (submap scan matching)"
+    )
+    log = add_command(
+        slam_sub,
+        "simulate",
+        _slam_simulate,
+        help="write a simulated CARMEN log: laps of a generated office's ring corridor",
+    )
+    log.add_argument("--out", required=True, help="CARMEN log to write")
+    log.add_argument("--width", type=float, default=50.0, help="floor width (m)")
+    log.add_argument("--height", type=float, default=60.0, help="floor height (m)")
+    log.add_argument("--loops", type=int, default=3, help="laps of the ring corridor")
+    log.add_argument("--seed", type=int, default=0)
 
 
 def _print(result: dict[str, Any], as_json: bool) -> None:
@@ -91,8 +105,39 @@ def _bench(args: argparse.Namespace) -> int:
 
 
 def _slam_run(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
     from amiro.navigation.slam_run import run_slam
 
-    result = run_slam(Path(args.carmen), Path(args.out), args.fov_deg, args.max_range)
+    if not 0.0 < args.fov_deg <= 360.0:
+        raise ConfigError("--fov-deg must be within (0, 360]")
+    if args.max_range <= 0.0:
+        raise ConfigError("--max-range must be positive")
+    result = run_slam(
+        Path(args.carmen),
+        Path(args.out),
+        args.fov_deg,
+        args.max_range,
+        loop_closure=not args.no_loop_closure,
+    )
     _print(result, args.json)
+    return 0
+
+
+def _slam_simulate(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from amiro.core.config import ConfigError
+    from amiro.sim.office_log import ring_route, route_length, write_office_log
+
+    if args.loops < 1:
+        raise ConfigError("--loops must be at least 1")
+    if min(args.width, args.height) < 20.0:
+        raise ConfigError("--width and --height must be at least 20 m (rooms, corridor, core)")
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    scans = write_office_log(
+        out, np.random.default_rng(args.seed), args.width, args.height, args.loops
+    )
+    length = route_length(ring_route(args.width, args.height, args.loops))
+    _print({"log": str(out), "scans": scans, "route_m": round(length, 1)}, args.json)
     return 0

@@ -50,14 +50,16 @@ class CorrelativeMatcher:
         min_known: float = 0.5,
     ) -> None:
         hits = np.clip(2.0 * (prob.astype(np.float64) - 0.5), 0.0, 1.0)  # unknown, free: 0
-        self.fine = np.asarray(gaussian_filter(hits, 1.0) * 2.5).clip(0.0, 1.0)
+        fine = np.asarray(gaussian_filter(hits, 1.0) * 2.5).clip(0.0, 1.0)
         # points in unseen space say nothing either way: the score averages over the points
         # that land in seen cells, else a match would slide to cover the map more fully
         known = maximum_filter((prob != 0.5).astype(np.float64), size=3)
         size = coarse_factor + 1
-        self.known_fine = known
-        self.coarse = maximum_filter(self.fine, size=size, mode="constant")
-        self.known_coarse = maximum_filter(known, size=size, mode="constant")
+        coarse = maximum_filter(fine, size=size, mode="constant")
+        known_coarse = maximum_filter(known, size=size, mode="constant")
+        # hit likelihood and seen-ness packed in one array: one gather reads both
+        self.fine_pair = (fine + 1j * known).astype(np.complex64)
+        self.coarse_pair = (coarse + 1j * known_coarse).astype(np.complex64)
         self.min_known = min_known
         self.resolution = resolution
         self.origin = origin
@@ -74,7 +76,7 @@ class CorrelativeMatcher:
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
         offsets = self.factor * np.arange(-n_xy, n_xy + 1)
         scores = self._scores(
-            self.coarse, self.known_coarse, px, py, guess.x, guess.y, thetas, offsets
+            self.coarse_pair, px, py, guess.x, guess.y, thetas, offsets
         )
         candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
         fine_offsets = np.arange(-self.factor, self.factor + 1)
@@ -82,7 +84,7 @@ class CorrelativeMatcher:
         refined: list[tuple[float, Pose2D]] = []
         for cand in candidates:
             ths = cand.theta + fine_steps
-            sc = self._scores(self.fine, self.known_fine, px, py, cand.x, cand.y, ths, fine_offsets)
+            sc = self._scores(self.fine_pair, px, py, cand.x, cand.y, ths, fine_offsets)
             k, r, c = np.unravel_index(int(np.argmax(sc)), sc.shape)
             res = self.resolution
             pose = Pose2D(
@@ -98,8 +100,7 @@ class CorrelativeMatcher:
 
     def _scores(
         self,
-        grid: FloatArray,
-        known: FloatArray,
+        pair: npt.NDArray[np.complex64],
         px: FloatArray,
         py: FloatArray,
         x: float,
@@ -109,7 +110,7 @@ class CorrelativeMatcher:
     ) -> FloatArray:
         """Mean grid value at the points in seen cells (at least ``min_known`` of them) for
         every (theta, row offset, column offset)."""
-        h, w = grid.shape
+        h, w = pair.shape
         res = self.resolution
         out = np.empty((len(thetas), len(offsets), len(offsets)))
         for k, theta in enumerate(thetas):
@@ -119,10 +120,9 @@ class CorrelativeMatcher:
             rows = row[None, None, :] + offsets[:, None, None]
             cols = col[None, None, :] + offsets[None, :, None]
             inside = (rows >= 0) & (rows < h) & (cols >= 0) & (cols < w)
-            rows, cols = rows.clip(0, h - 1), cols.clip(0, w - 1)
-            hit_sum = np.where(inside, grid[rows, cols], 0.0).sum(axis=2)
-            seen = np.where(inside, known[rows, cols], 0.0).sum(axis=2)
-            out[k] = hit_sum / np.maximum(seen, self.min_known * len(px))
+            vals = pair[rows.clip(0, h - 1), cols.clip(0, w - 1)]
+            sums = np.where(inside, vals, 0).sum(axis=2)
+            out[k] = sums.real / np.maximum(sums.imag, self.min_known * len(px))
         return out
 
     def _distinct_best(

@@ -43,7 +43,7 @@ class GraphSlamParams:
     keyframe_rad: float = 0.3
     loop_check_m: float = 1.0  # travel between loop-closure searches
     loop_cloud_m: float = 4.0  # a loop query joins the scans of this much recent travel
-    loop_cloud_points: int = 400
+    loop_cloud_points: int = 200
     optimize_every: int = 5  # loop edges between optimisations
     iterations_online: int = 8  # per optimisation while mapping (the final one runs longer)
     # front-end edge: sigma = base + per metre moved (x, y) / per radian turned (theta)

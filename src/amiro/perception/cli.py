@@ -1,4 +1,5 @@
-"""``amiro perception evaluate``: the paper's section-4.2 protocol on generated RGB-D data."""
+"""``amiro perception evaluate`` (the paper's section-4.2 protocol on generated RGB-D data)
+and ``amiro perception bench`` (the issue's speed targets)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from amiro.cli_support import add_command, add_group, emit_json
+from amiro.cli_support import add_command, add_group, emit_json, emit_report
 
 if TYPE_CHECKING:
     from amiro.cli_support import Subcommands
@@ -32,6 +33,19 @@ def register(sub: Subcommands) -> None:
         "--plot", default="perception_error_by_distance.png", help="PNG of the error by distance"
     )
     ev.add_argument("--no-plot", action="store_true", help="do not write the PNG")
+    bench = add_command(
+        commands,
+        "bench",
+        _bench,
+        help="time of coordinate estimation per frame and of face identification per face",
+        description="Coordinate estimation of a frame's detections (depth image to map "
+        "positions) on generated RGB-D frames, and dlib face identification of one face on "
+        "the shipped portraits; medians in ms, beside the issue's targets (1 ms, 200 ms).",
+    )
+    bench.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    bench.add_argument("--frames", type=int, default=200, help="frames timed (default 200)")
+    bench.add_argument("--people", type=int, default=3, help="detections per frame (default 3)")
+    bench.add_argument("--repeats", type=int, default=10, help="face timings (default 10)")
 
 
 def _evaluate(args: argparse.Namespace) -> int:
@@ -54,3 +68,21 @@ def _evaluate(args: argparse.Namespace) -> int:
     else:
         print_report(report)
     return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from amiro.core.config import ConfigError
+    from amiro.perception.bench import bench
+
+    if min(args.frames, args.people, args.repeats) < 1:
+        raise ConfigError("--frames, --people and --repeats must be at least 1")
+    report = bench(np.random.default_rng(args.seed), args.frames, args.people, args.repeats)
+    text = (
+        f"coordinate estimation: {report['estimate_ms_per_frame']} ms per frame of "
+        f"{args.people} detections (target < 1 ms)\n"
+        f"face identification (dlib): {report['face_ms_per_face_in_frame']} ms per face in a "
+        f"640 x 480 frame, {report['face_ms_per_face_crop']} ms in a head crop (target < 200 ms)"
+    )
+    return emit_report(args, report, text)

@@ -18,23 +18,15 @@ from amiro.core.clock import wall_seconds
 from amiro.core.messages import BoundingBox2D, Point
 from amiro.perception import paper_tables as paper
 from amiro.perception.config import SimDetectorSection
-from amiro.perception.depth import centre_depth, torso_depth
-from amiro.perception.estimation import (
-    CameraGeometry,
-    FloatArray,
-    Views,
-    body_centre_row,
-    improved,
-    paper_formula,
-)
+from amiro.perception.depth import centre_depth
+from amiro.perception.estimation import CameraGeometry, FloatArray, Views, paper_formula
+from amiro.perception.locate import locate_people
 from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector, iou
 from amiro.sim.camera import Camera
 from amiro.sim.messages import CameraObservation
 from amiro.sim.rgbd_dataset import CAMERAS, POSTURES, SIM_POSTURE, DatasetSpec, RgbdBatch, generate
 
-# The visible surface lies this far in front of the body's centre, on average (m).
-SURFACE_TO_CENTRE_M = 0.12
 MIN_IOU = 0.3
 
 
@@ -90,7 +82,7 @@ def score_batch(
     n = len(batch.box)
     count = np.zeros(n)
     paper_px = np.full((n, 3), np.nan)  # the paper's u, v and centre depth reading
-    torso = np.full((n, 4), np.nan)  # the improved estimator's z-depth, u, box top, bottom
+    improved_err = np.full((n, 3), np.nan)
     for i in range(n):
         obs = observation(batch, i)
         detections = detector.detect(Frame(observations=[obs]))
@@ -100,26 +92,22 @@ def score_batch(
             continue
         box = max(scored, key=lambda s: s[0])[1]
         paper_px[i] = box.cx, box.cy, centre_depth(batch.depth[i], box, batch.depth_scale)
+        depth = batch.depth[i].astype(np.float64)
         started = wall_seconds()
-        found = torso_depth(batch.depth[i].astype(np.float64), box, batch.depth_scale, depth_sigma)
+        (estimate,) = locate_people(
+            geom, depth, [box], _rows(batch.views, slice(i, i + 1)), depth_sigma
+        )
         results.estimate_s += wall_seconds() - started
-        if found is not None:
-            torso[i] = *found, box.cy - box.height / 2, box.cy + box.height / 2
+        improved_err[i] = estimate - batch.truth[i]
     ok = ~np.isnan(paper_px[:, 0])
     paper_err = np.full((n, 3), np.nan)
-    improved_err = np.full((n, 3), np.nan)
-    views = _rows(batch.views, ok)
     paper_err[ok] = (
-        paper_formula(geom, paper_px[ok, 0], paper_px[ok, 1], paper_px[ok, 2], views)
+        paper_formula(
+            geom, paper_px[ok, 0], paper_px[ok, 1], paper_px[ok, 2], _rows(batch.views, ok)
+        )
         - batch.truth[ok]
     )
-    started = wall_seconds()
-    z_depth, u, top, bottom = torso[ok].T
-    row = body_centre_row(geom, top, bottom, z_depth, views.head_pitch)
-    estimate = improved(geom, u, row, z_depth, views, SURFACE_TO_CENTRE_M)
-    results.estimate_s += wall_seconds() - started
     results.estimated += int(ok.sum())
-    improved_err[ok] = estimate - batch.truth[ok]
     results.distance.append(batch.distance)
     results.posture.append(batch.posture)
     results.camera.append(batch.camera)
@@ -128,7 +116,7 @@ def score_batch(
     results.improved_error.append(improved_err)
 
 
-def _rows(views: Views, mask: npt.NDArray[np.bool_]) -> Views:
+def _rows(views: Views, mask: npt.NDArray[np.bool_] | slice) -> Views:
     return Views(
         views.x[mask],
         views.y[mask],

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Detection2D, Point
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.estimation import (
@@ -114,4 +115,9 @@ def build_people_finder(
     """The people finder ``cfg.backend`` names."""
     if cfg.backend == "oracle":
         return OraclePeopleFinder(sim, rng, cfg.position_noise_m)
+    if cfg.faces.backend == "dlib":
+        raise ConfigError(
+            "perception.faces.backend: dlib needs camera images and the simulated camera "
+            "renders none; use sim here (FaceGallery + DlibFaceEmbedder work on real images)"
+        )
     return SimPeopleFinder(sim, rng, cfg)

@@ -70,6 +70,12 @@ def register(sub: Subcommands) -> None:
     )
     deliver.add_argument("--speed", type=float, default=None, help="as for hydration")
     deliver.add_argument("--config", help="YAML configuration overriding the defaults")
+    deliver.add_argument("--lang", default="en", help="what the robot says: en, ro or fr")
+    deliver.add_argument(
+        "--check-activity",
+        metavar="ACTIVITY",
+        help="after delivering, check that Maria does ACTIVITY (e.g. play_phone)",
+    )
 
 
 def _run_hydration(args: argparse.Namespace) -> int:
@@ -107,6 +113,8 @@ def _run_delivery(args: argparse.Namespace) -> int:
         live=not (args.headless or args.json),
         speed=args.speed,
         config_path=args.config,
+        lang=args.lang,
+        check_activity=args.check_activity,
     )
     return _finish(args, run_delivery(options))
 

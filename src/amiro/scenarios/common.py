@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from amiro.core.clock import SimClock, wall_seconds
-from amiro.core.config import load
+from amiro.core.config import ConfigError, load
 from amiro.scenarios.recorder import EventRecorder, stdout_or_none
 from amiro.system import System, SystemConfig, build_system
 
@@ -51,6 +51,8 @@ def run_scenario(
 ) -> ScenarioRun:
     """Build the system, let ``setup`` add to it, spin until ``finished`` (or the timeout)."""
     speed = speed if speed is not None else (LIVE_SPEED if live else None)
+    if speed is not None and speed <= 0:
+        raise ConfigError(f"--speed must be positive, got {speed:g}")
     system = build_system(cfg, SimClock(speed=speed))
     recorder = EventRecorder(system.runtime, live=stdout_or_none(live))
     if setup is not None:

@@ -66,8 +66,6 @@ def scenario_config(opts: DeliveryOptions) -> SystemConfig:
 def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
     """Plan, deliver, re-plan as the home turns out to differ from the map; the report has the
     contract's keys plus the plans and what the robot learned."""
-    if opts.speed is not None and opts.speed <= 0:
-        raise ConfigError(f"--speed must be positive, got {opts.speed}")
     cfg = scenario_config(opts)
     lang = check_language(opts.lang)
     parts: dict[str, Any] = {}
