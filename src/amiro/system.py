@@ -137,7 +137,9 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
             "clock": runtime.clock,
             "world": world,
             "navigation": navigation,
-            "perception": build_people_finder(sim, rng_perception, cfg.perception),
+            "perception": build_people_finder(
+                sim, rng_perception, cfg.perception, lambda: navigation.pose
+            ),
             "activity": activity,
             "speech": dialogue.speech,
             "nlu": dialogue.nlu,

@@ -12,18 +12,14 @@ import pytest
 from amiro.core.config import ConfigError
 from amiro.dialogue.asr_eval import evaluate_asr, reference
 from amiro.dialogue.asr_pocketsphinx import PocketsphinxRecognizer
+from amiro.dialogue.asr_testset import SHIPPED_COMMANDS, read_commands, write_test_set
 from amiro.dialogue.audio import Audio, read_wav, resample, write_wav
 from amiro.dialogue.config import AsrConfig, DialogueConfig, TtsConfig
 from amiro.dialogue.stack import make_recognizer, make_synthesizer
 from amiro.dialogue.tts import EspeakSynthesizer
 from amiro.dialogue.vad import utterances
 
-COMMANDS = (
-    "display my blood pressure",
-    "what plans do i have for tomorrow",
-    "turn on the lights in the kitchen",
-    "how will the weather be tomorrow",
-)
+COMMANDS = read_commands(SHIPPED_COMMANDS)[::3]  # a third of the shipped set, to stay fast
 
 
 @pytest.fixture(scope="module")
@@ -33,29 +29,33 @@ def espeak() -> EspeakSynthesizer:
 
 @pytest.fixture(scope="module")
 def recordings(tmp_path_factory: pytest.TempPathFactory, espeak: EspeakSynthesizer) -> Path:
-    """Clean and noisy (sox white noise at about 20 dB SNR) recordings named by transcript."""
+    """The commands clean and with white noise at 20 dB SNR (seeded: the same every run)."""
     base = tmp_path_factory.mktemp("asr")
-    clean, noisy = base / "clean", base / "noisy"
-    clean.mkdir()
-    noisy.mkdir()
-    for text in COMMANDS:
-        name = text.replace(" ", "_") + ".wav"
-        write_wav(clean / name, espeak.synthesize(text, "en", "en-us", 140))
-        # -R: sox's repeatable mode, so the noise (and the test) is the same on every run
-        noise = f"|sox -R {clean / name} -p synth whitenoise vol 0.02"
-        subprocess.run(
-            ["sox", "-R", "-m", str(clean / name), noise, str(noisy / name)], check=True
-        )
-    return clean
+    write_test_set(COMMANDS, base / "clean", espeak, np.random.default_rng(0))
+    write_test_set(COMMANDS, base / "snr20", espeak, np.random.default_rng(0), snr_db=20.0)
+    return base / "clean"
 
 
-@pytest.mark.parametrize("which", ["clean", "noisy"])
-def test_grammar_mode_recognises_commands(recordings: Path, which: str) -> None:
+# measured on these 13 commands: clean 100 % / WER 0 %, 20 dB 92 % / WER 4 % (RTF ~ 0.08);
+# issue targets: >= 90 % clean, WER <= 10 % at 20 dB
+@pytest.mark.parametrize(("which", "accuracy", "wer"), [("clean", 0.9, 0.05), ("snr20", 0.85, 0.1)])
+def test_grammar_mode_recognises_commands(
+    recordings: Path, which: str, accuracy: float, wer: float
+) -> None:
     report = evaluate_asr(recordings.parent / which, PocketsphinxRecognizer("nlu"))
     assert report["files"] == len(COMMANDS)
-    assert report["sentence_accuracy"] >= 0.75
-    assert report["wer"] <= 0.15
+    assert report["sentence_accuracy"] >= accuracy
+    assert report["wer"] <= wer
     assert report["rtf"] > 0.0
+
+
+def test_sox_noise_still_recognised(recordings: Path, tmp_path: Path) -> None:
+    """The issue's original noisy set: sox white noise (repeatable with -R) mixed in."""
+    for wav in sorted(recordings.glob("*.wav"))[:4]:
+        noise = f"|sox -R {wav} -p synth whitenoise vol 0.02"
+        subprocess.run(["sox", "-R", "-m", str(wav), noise, str(tmp_path / wav.name)], check=True)
+    report = evaluate_asr(tmp_path, PocketsphinxRecognizer("nlu"))
+    assert report["sentence_accuracy"] == 1.0
 
 
 def test_language_model_mode_is_worse(recordings: Path) -> None:
@@ -66,8 +66,9 @@ def test_language_model_mode_is_worse(recordings: Path) -> None:
 
 def test_answers_grammar_for_listen(espeak: EspeakSynthesizer) -> None:
     recognizer = PocketsphinxRecognizer("answers")
-    assert recognizer.transcribe(espeak.synthesize("yes please", "en")).text == "yes please"
-    assert recognizer.transcribe(espeak.synthesize("no thank you", "en")).text == "no thank you"
+    # two answers in a row, as the simulated residents reply
+    for reply in ("yes please", "no thank you", "no i'm not thirsty", "not now maybe later"):
+        assert recognizer.transcribe(espeak.synthesize(reply, "en")).text == reply
 
 
 def test_tts_speaks_every_language(espeak: EspeakSynthesizer) -> None:
@@ -122,3 +123,25 @@ def test_cli_asr_evaluate(recordings: Path, capsys: pytest.CaptureFixture[str]) 
     assert args.handler(args) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["files"] == len(COMMANDS) and {"wer", "sentence_accuracy", "rtf"} <= set(out)
+
+
+def test_cli_asr_synthesize(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import argparse
+
+    from amiro.dialogue.cli import register
+
+    (tmp_path / "commands.txt").write_text("# two\ngo to maria\n\nyes please\n", encoding="utf-8")
+    parser = argparse.ArgumentParser()
+    register(parser.add_subparsers())
+    cmd = ["asr", "synthesize", str(tmp_path / "commands.txt"), str(tmp_path / "out")]
+    args = parser.parse_args([*cmd, "--snr", "10", "--json"])
+    assert args.handler(args) == 0
+    assert json.loads(capsys.readouterr().out) == {
+        "files": 2,
+        "dir": str(tmp_path / "out"),
+        "snr_db": 10.0,
+    }
+    assert sorted(p.name for p in (tmp_path / "out").glob("*.wav")) == [
+        "go_to_maria.wav",
+        "yes_please.wav",
+    ]

@@ -5,6 +5,7 @@ out on every run and machine."""
 from __future__ import annotations
 
 from collections.abc import Iterable
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +13,8 @@ import numpy as np
 from amiro.core.config import ConfigError
 from amiro.dialogue.audio import add_noise_at_snr, write_wav
 from amiro.dialogue.tts import Synthesizer
+
+SHIPPED_COMMANDS = Path(str(resources.files("amiro").joinpath("data/dialogue/grammar/asr_en.txt")))
 
 
 def read_commands(path: Path) -> list[str]:

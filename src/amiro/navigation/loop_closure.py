@@ -43,6 +43,7 @@ class LoopParams:
     agree_rad: float = math.radians(2.0)
     consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
     independent_m: float = 3.0  # agreeing matches must come from this far apart
+    witnesses: int = 2  # earlier matches that must agree with a new one to correct the map
 
 
 @dataclass(frozen=True)
@@ -92,8 +93,8 @@ class LoopCloser:
         """Verified loop edges for ``keyframe`` (points px, py in its frame; ``poses``: graph
         pose of every keyframe).  A match whose correction of the current estimate is
         small is accepted at once; a larger one (a first closure after a long drift, or an
-        alias along a corridor) waits until a match from another keyframe implies the same
-        correction, since aliases a few metres apart rarely agree."""
+        alias along a corridor) waits until ``witnesses`` matches from other submaps and
+        places imply the same correction, since aliases a few metres apart rarely agree."""
         current = _pose(poses, keyframe)
         found = self._matches(keyframe, px, py, current, poses, travel, since_closure)
         p = self.params
@@ -105,7 +106,7 @@ class LoopCloser:
                 accepted.append(cand.edge)
                 continue
             agreeing = [w for w in self._waiting if _agree(w, cand, p)]
-            if agreeing:
+            if len(agreeing) >= p.witnesses:
                 accepted.extend(w.edge for w in agreeing)
                 accepted.append(cand.edge)
                 self._waiting = [w for w in self._waiting if w not in agreeing]

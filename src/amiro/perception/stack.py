@@ -7,10 +7,12 @@ pose, and the tracker.  The ``oracle`` backend is kept for tests and as a baseli
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from amiro.core.config import ConfigError
-from amiro.core.messages import BoundingBox2D, Detection2D, Point
+from amiro.core.messages import BoundingBox2D, Detection2D, Point, Pose2D
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.estimation import (
     CameraGeometry,
@@ -32,13 +34,22 @@ from amiro.sim.simulator import Simulation
 # whatever lies behind it, drawn in this range (m).
 BACKGROUND_DEPTH = (1.0, 6.0)
 
+PoseSource = Callable[[], Pose2D | None]
+
 
 class SimPeopleFinder:
     """Detector → depth → face → 3D estimate → tracks, on the simulated head camera."""
 
-    def __init__(self, sim: Simulation, rng: np.random.Generator, cfg: PerceptionConfig) -> None:
+    def __init__(
+        self,
+        sim: Simulation,
+        rng: np.random.Generator,
+        cfg: PerceptionConfig,
+        localization: PoseSource | None = None,
+    ) -> None:
         self.sim = sim
         self.cfg = cfg
+        self.localization = localization
         self.geometry = camera_geometry(sim)
         rng_detect, rng_face, self.rng = rng.spawn(3)
         self.detector = SimDetector(
@@ -87,7 +98,8 @@ class SimPeopleFinder:
 
     def estimate(self, boxes: list[BoundingBox2D], depth: FloatArray) -> FloatArray:
         """Map-frame points of the people in ``boxes`` at their depth readings."""
-        views = robot_views(self.sim, len(boxes))
+        estimate = self.localization() if self.localization is not None else None
+        views = robot_views(self.sim, len(boxes), estimate)
         u = np.array([b.cx for b in boxes])
         v = np.array([b.cy for b in boxes])
         if self.cfg.estimator == "paper":
@@ -97,10 +109,11 @@ class SimPeopleFinder:
         return improved(self.geometry, u, row, depth, views)
 
 
-def robot_views(sim: Simulation, n: int) -> Views:
-    """The robot's pose and head joints now, for ``n`` detections."""
+def robot_views(sim: Simulation, n: int, pose: Pose2D | None = None) -> Views:
+    """The robot's pose (the localisation estimate when given, else the simulator's truth)
+    and head joints now, for ``n`` detections."""
     robot = sim.robot
-    pose = robot.true_pose  # stands for the localisation estimate until AMCL lands
+    pose = pose if pose is not None else robot.true_pose
     return Views.single(pose.x, pose.y, pose.theta, robot.head_yaw, robot.head_pitch, n)
 
 
@@ -110,9 +123,13 @@ def camera_geometry(sim: Simulation) -> CameraGeometry:
 
 
 def build_people_finder(
-    sim: Simulation, rng: np.random.Generator, cfg: PerceptionConfig
+    sim: Simulation,
+    rng: np.random.Generator,
+    cfg: PerceptionConfig,
+    localization: PoseSource | None = None,
 ) -> PeopleFinder:
-    """The people finder ``cfg.backend`` names."""
+    """The people finder ``cfg.backend`` names; positions go into the map frame through
+    ``localization`` (the robot's pose estimate), or the simulator's true pose without it."""
     if cfg.backend == "oracle":
         return OraclePeopleFinder(sim, rng, cfg.position_noise_m)
     if cfg.faces.backend == "dlib":
@@ -120,4 +137,4 @@ def build_people_finder(
             "perception.faces.backend: dlib needs camera images and the simulated camera "
             "renders none; use sim here (FaceGallery + DlibFaceEmbedder work on real images)"
         )
-    return SimPeopleFinder(sim, rng, cfg)
+    return SimPeopleFinder(sim, rng, cfg, localization)

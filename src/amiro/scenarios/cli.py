@@ -66,7 +66,9 @@ def register(sub: Subcommands) -> None:
     )
     deliver.add_argument("--no-help", action="store_true", help="John declines to open the door")
     deliver.add_argument(
-        "--engine", default="pyperplan", help="planning engine: pyperplan, fast-downward, kairos"
+        "--engine",
+        default="kairos",
+        help="planning engine: kairos (default), pyperplan or fast-downward (GPL, optional)",
     )
     deliver.add_argument("--speed", type=float, default=None, help="as for hydration")
     deliver.add_argument("--config", help="YAML configuration overriding the defaults")

@@ -36,7 +36,7 @@ class DeliveryOptions:
     seed: int = 1
     closed_doors: tuple[str, ...] = ("living_door",)
     help: bool = True
-    engine: Engine = "pyperplan"
+    engine: Engine = "kairos"
     live: bool = False
     speed: float | None = None
     config_path: str | None = None

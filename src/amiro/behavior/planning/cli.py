@@ -11,7 +11,7 @@ if TYPE_CHECKING:
     from amiro.behavior.planning.planner import Engine, PlanningConfig
     from amiro.cli_support import Subcommands
 
-ENGINES = ("pyperplan", "fast-downward", "kairos")
+ENGINES = ("kairos", "pyperplan", "fast-downward")
 
 
 def register(sub: Subcommands) -> None:
@@ -43,7 +43,7 @@ def register(sub: Subcommands) -> None:
 
 
 def _engine_args(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--engine", default="pyperplan", help=f"one of {', '.join(ENGINES)}")
+    parser.add_argument("--engine", default="kairos", help=f"one of {', '.join(ENGINES)}")
     parser.add_argument("--temporal", action="store_true", help="durative actions (kairos)")
 
 

@@ -27,6 +27,8 @@ from unified_planning.model.fnode import FNode
 from unified_planning.model.types import Type
 from unified_planning.shortcuts import BoolType, RealType, UserType
 
+from amiro.behavior.planning.environment import planning_environment
+
 # Fixed durations (s) of the actions that do not travel, for temporal planning.
 DURATIONS_S = {
     "ask_open_door": 15.0,
@@ -58,6 +60,7 @@ class HomeDomain:
 @cache
 def home_domain(temporal: bool = False) -> HomeDomain:
     """Built once per variant: problems share the same fluent and action objects."""
+    planning_environment()  # UP's environment made before anything of UP is
     wp, room, door, person = (UserType(n) for n in ("waypoint", "room", "door", "person"))
     b = BoolType()
     f = {

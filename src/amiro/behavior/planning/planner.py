@@ -1,9 +1,10 @@
 """Planning through unified-planning with the engine chosen in config.
 
-``pyperplan`` (classical, through :mod:`.pyperplan_engine`, which keeps the grounded task
-between plans) is the default; ``fast-downward`` (GPL, optional package ``up-fast-downward``)
-is a faster classical engine; ``kairos`` (``up-kairos``) plans with durations from distances
-(temporal).  A planner keeps its engine for its life, so re-planning skips the start-up.
+``kairos`` (Apache-2.0, through :mod:`.kairos_engine`) is the default: classical, or temporal
+with durations from distances.  The GPL engines are optional (extra ``gpl-planners``):
+``pyperplan`` (through :mod:`.pyperplan_engine`, which keeps the grounded task between plans,
+the fastest re-plans) and ``fast-downward``.  A planner keeps its engine for its life, so
+re-planning skips the start-up.
 When no plan exists the outcome carries an explanation in words (see :mod:`.explain`).
 """
 
@@ -18,25 +19,33 @@ from pydantic import Field, model_validator
 from unified_planning.engines import PlanGenerationResultStatus as Status
 from unified_planning.model import Problem
 from unified_planning.plans import SequentialPlan, TimeTriggeredPlan
-from unified_planning.shortcuts import OneshotPlanner, get_environment
+from unified_planning.shortcuts import OneshotPlanner
 
 from amiro.behavior.planning.domain import home_domain
+from amiro.behavior.planning.environment import add_engine, planning_environment
 from amiro.behavior.planning.explain import explain_no_plan
 from amiro.behavior.planning.knowledge import KnowledgeBase
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.core.config import ConfigError, Section
 
-Engine = Literal["pyperplan", "fast-downward", "kairos"]
+Engine = Literal["kairos", "pyperplan", "fast-downward"]
 _PACKAGES = {
+    "kairos": "up_kairos",
     "pyperplan": "up_pyperplan",
     "fast-downward": "up_fast_downward",
-    "kairos": "up_kairos",
+}
+_EXTRAS = {"pyperplan": "gpl-planners", "fast-downward": "gpl-planners"}
+# config name -> the engine's name in unified-planning, its module and class
+_UP_ENGINES = {
+    "kairos": ("amiro-kairos", "amiro.behavior.planning.kairos_engine", "HomeKairos"),
+    "pyperplan": ("amiro-pyperplan", "amiro.behavior.planning.pyperplan_engine", "CachedPyperplan"),
+    "fast-downward": ("fast-downward", "up_fast_downward", "FastDownwardPDDLPlanner"),
 }
 _SOLVED = (Status.SOLVED_SATISFICING, Status.SOLVED_OPTIMALLY)
 
 
 class PlanningConfig(Section):
-    engine: Engine = "pyperplan"
+    engine: Engine = "kairos"
     temporal: bool = Field(default=False, description="durative actions (engine kairos)")
     timeout_s: float = Field(default=10.0, gt=0.0)
     speed_mps: float = Field(default=0.35, gt=0.0, description="for durations from distances")
@@ -98,21 +107,15 @@ def engine_available(engine: str) -> bool:
 
 
 def open_engine(engine: str) -> Any:
-    """The unified-planning engine for a config name; credits quiet (``--json`` owns stdout),
-    engines UP does not list registered."""
-    env = get_environment()
-    env.credits_stream = None
+    """The unified-planning engine for a config name, its package imported only now."""
     if not engine_available(engine):
         package = _PACKAGES[engine].replace("_", "-")
-        raise ConfigError(f"planning engine {engine} needs the package {package}")
-    if engine == "kairos":
-        importlib.import_module("up_kairos").register(env)
-    if engine == "pyperplan":
-        from amiro.behavior.planning import pyperplan_engine
-
-        pyperplan_engine.register(env)
-        return OneshotPlanner(name=pyperplan_engine.NAME)
-    return OneshotPlanner(name=engine)
+        extra = _EXTRAS.get(engine)
+        install = f"pip install 'amiro[{extra}]'" if extra else f"pip install {package}"
+        raise ConfigError(f"planning engine {engine} needs the package {package}: {install}")
+    name, module, class_name = _UP_ENGINES[engine]
+    add_engine(planning_environment(), name, module, class_name)
+    return OneshotPlanner(name=name)
 
 
 def solve(planner: Any, problem: Problem, timeout_s: float | None) -> tuple[str, list[PlanStep]]:

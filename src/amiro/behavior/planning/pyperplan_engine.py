@@ -17,10 +17,10 @@ from collections.abc import Hashable
 from typing import Any
 
 import unified_planning as up
-from pyperplan.grounding import _get_partial_state, _get_statics  # type: ignore[import-untyped]
-from pyperplan.pddl.pddl import Predicate  # type: ignore[import-untyped]
-from pyperplan.planner import _ground, _search  # type: ignore[import-untyped]
-from pyperplan.task import Task  # type: ignore[import-untyped]
+from pyperplan.grounding import _get_partial_state, _get_statics
+from pyperplan.pddl.pddl import Predicate
+from pyperplan.planner import _ground, _search
+from pyperplan.task import Task
 from unified_planning.engines import PlanGenerationResult
 from unified_planning.engines import PlanGenerationResultStatus as Status
 from unified_planning.model import Problem
@@ -99,9 +99,3 @@ class CachedPyperplan(EngineImpl):  # type: ignore[misc]
         self._grounded.move_to_end(key)
         state = _get_partial_state(pyp_problem.initial_state) & cached.facts
         return Task(cached.name, cached.facts, state, cached.goals, cached.operators)
-
-
-def register(env: up.environment.Environment) -> None:
-    """Make ``OneshotPlanner(name="amiro-pyperplan")`` find this engine."""
-    if NAME not in env.factory.engines:
-        env.factory.add_engine(NAME, __name__, CachedPyperplan.__name__)
