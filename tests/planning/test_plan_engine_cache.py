@@ -4,16 +4,17 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from up_pyperplan.engine import EngineImpl
+from up_pyperplan.engine import EngineImpl  # type: ignore[import-untyped]
 
 from amiro.behavior.planning.domain import home_domain
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.planner import HomePlanner, solve
+from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, solve
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.behavior.planning.topology import grid_topology, topology_from_world
 from amiro.sim.world import World, default_home_path
 
 DOCK = RobotState("hallway", 0.8, 1.0)
+PYPERPLAN = PlanningConfig(engine="pyperplan")
 GOAL = [Goal("notified", "maria")]
 
 
@@ -24,13 +25,13 @@ def kb() -> KnowledgeBase:
 
 
 def fresh_plan(kb: KnowledgeBase, robot: RobotState, goals: list[Goal]) -> list[str]:
-    return [str(s) for s in HomePlanner().plan(kb, robot, goals).steps]
+    return [str(s) for s in HomePlanner(PYPERPLAN).plan(kb, robot, goals).steps]
 
 
 def test_replan_after_a_door_closed_reuses_the_grounding_and_matches_a_fresh_plan(
     kb: KnowledgeBase,
 ) -> None:
-    planner = HomePlanner()
+    planner = HomePlanner(PYPERPLAN)
     before = planner.plan(kb, DOCK, GOAL)
     kb.set_door("living_door", DoorState.CLOSED, 1.0, "lidar")
     after = planner.plan(kb, DOCK, GOAL)
@@ -41,7 +42,7 @@ def test_replan_after_a_door_closed_reuses_the_grounding_and_matches_a_fresh_pla
 
 
 def test_a_changed_static_fact_grounds_again(kb: KnowledgeBase) -> None:
-    planner = HomePlanner()
+    planner = HomePlanner(PYPERPLAN)
     planner.plan(kb, DOCK, GOAL)
     kb.set_door("living_door", DoorState.CLOSED, 1.0, "lidar")
     kb.declined("john", 2.0)  # who is willing to help is static to pyperplan
@@ -54,7 +55,7 @@ def test_a_changed_static_fact_grounds_again(kb: KnowledgeBase) -> None:
 def test_cached_engine_agrees_with_up_pyperplan_on_generated_homes() -> None:
     rng = np.random.default_rng(3)
     domain = home_domain()
-    planner = HomePlanner()
+    planner = HomePlanner(PYPERPLAN)
     solved = 0
     for n_rooms in (3, 6, 9):
         topo = grid_topology(n_rooms, rng)

@@ -21,8 +21,8 @@ def kb() -> KnowledgeBase:
     return KnowledgeBase(topo, {"maria": "living_room", "john": "hallway"})
 
 
-def actions(kb: KnowledgeBase, engine: str = "pyperplan") -> list[str]:
-    outcome = HomePlanner(PlanningConfig(engine=engine)).plan(kb, DOCK, GOAL)  # type: ignore[arg-type]
+def actions(kb: KnowledgeBase, engine: str = "kairos") -> list[str]:
+    outcome = HomePlanner(PlanningConfig(engine=engine)).plan(kb, DOCK, GOAL)
     assert outcome.solved, outcome.explanation
     return [str(s) for s in outcome.steps]
 
@@ -85,8 +85,9 @@ def test_temporal_plan_with_kairos_has_durations_from_distances(kb: KnowledgeBas
     assert [s.action for s in outcome.steps][-1] == "deliver"
 
 
-def test_fast_downward_finds_the_same_length_of_plan(kb: KnowledgeBase) -> None:
-    assert len(actions(kb, "fast-downward")) == 4
+@pytest.mark.parametrize("engine", ["pyperplan", "fast-downward"])
+def test_gpl_engines_chosen_in_config_plan_as_the_default(kb: KnowledgeBase, engine: str) -> None:
+    assert actions(kb, engine) == actions(kb)
 
 
 def test_temporal_needs_a_temporal_engine() -> None:

@@ -99,8 +99,9 @@ def jsgf(
 ) -> str:
     """The grammar of ``data``'s examples (of ``intents``, default all) whose words are all
     in the recogniser's dictionary (``known(word)``) or in the hints' pronunciations.  With
-    ``chain``, two sentences may follow each other ("no, I'm not thirsty": replies to the
-    robot's questions often do), without lead words (mostly answers themselves: "okay")."""
+    ``chain``, two sentences of the same intent may follow each other ("no, I'm not
+    thirsty": replies to the robot's questions often do), without lead words (mostly
+    answers themselves: "okay")."""
     hints = hints or GrammarHints()
 
     def speakable(words: Iterable[str]) -> bool:
@@ -129,10 +130,10 @@ def jsgf(
     for side, phrases in (("lead", hints.lead), ("tail", hints.tail)):
         if said := [p for p in phrases if speakable(p.split())]:
             rules[side] = _alternatives(said)
-    body = "(" + " | ".join(f"<{rule}>" for rule in sorted(sentences)) + ")"
     if chain:
         rules.pop("lead", None)
-        body = f"{body} [{body}]"
+    repeat = " [<{}>]" if chain else ""
+    body = "(" + " | ".join(f"<{r}>{repeat.format(r)}" for r in sorted(sentences)) + ")"
     lead = "[<lead>] " if "lead" in rules else ""
     tail = " [<tail>]" if "tail" in rules else ""
     lines = ["#JSGF V1.0;", f"grammar {name};"]

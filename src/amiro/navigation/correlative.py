@@ -3,7 +3,7 @@
 Gauss-Newton only finds the nearest local optimum; closing a loop after metres of drift
 needs the global optimum of a wide window (Olson 2009, "Real-time correlative scan
 matching").  Every rotation step and every translation on a coarse lattice is scored on a
-max-pooled map (an upper bound of the fine scores it covers), the best few distinct
+max-pooled map (an optimistic estimate of the fine scores it covers), the best few distinct
 candidates are searched again at full resolution, and the runner-up's score is reported so
 the caller can reject ambiguous matches (a corridor looks the same a door further on).
 """
@@ -50,6 +50,7 @@ class CorrelativeMatcher:
         min_known: float = 0.5,
     ) -> None:
         hits = np.clip(2.0 * (prob.astype(np.float64) - 0.5), 0.0, 1.0)  # unknown, free: 0
+        # a one-cell blur tolerates sub-cell error; x2.5 brings a thin wall's peak back to ~1
         fine = np.asarray(gaussian_filter(hits, 1.0) * 2.5).clip(0.0, 1.0)
         # points in unseen space say nothing either way: the score averages over the points
         # that land in seen cells, else a match would slide to cover the map more fully
@@ -75,9 +76,7 @@ class CorrelativeMatcher:
         thetas: FloatArray = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1.0)
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
         offsets = self.factor * np.arange(-n_xy, n_xy + 1)
-        scores = self._scores(
-            self.coarse_pair, px, py, guess.x, guess.y, thetas, offsets
-        )
+        scores = self._scores(self.coarse_pair, px, py, guess.x, guess.y, thetas, offsets)
         candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
         fine_offsets = np.arange(-self.factor, self.factor + 1)
         fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)

@@ -152,11 +152,10 @@ class GraphSlam:
             self.graph.add_edge(edge.anchor, edge.keyframe, edge.z, p.loop_sigma, robust=True)
         if not edges:
             return
-        gap = since
         self.loop_closures += len(edges)
         self._pending += len(edges)
         self._last_closure = self._travel
-        if self._pending >= p.optimize_every or gap > 2.0 * p.submap_m:
+        if self._pending >= p.optimize_every or since > 2.0 * p.submap_m:
             self.graph.optimize(iterations=p.iterations_online)
             self._pending = 0
 

@@ -2,7 +2,10 @@
 
 Each beam that crosses the door's opening is compared with the distance to the door line:
 ending at the line means the panel is there, going on well beyond means the way is open, and
-ending well before means something else hides the door (that beam says nothing).
+ending well before means something else hides the door (that beam says nothing).  A beam is
+used only if it passes the whole thickness of the wall inside the opening: at a grazing angle
+a beam that crosses the line in the opening can end on the wall's face beside the door or on
+the jamb beyond it, as near the line as a closed panel would be.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from amiro.behavior.planning.knowledge import DoorState
 from amiro.core.messages import LaserScan, Pose2D
 
 FRAME_MARGIN_M = 0.1  # beams this close to the door frame are not used
+WALL_HALF_THICKNESS_M = 0.1  # each side of the door line: walls up to 0.2 m thick
 THROUGH_M = 0.3  # a beam this far beyond the door line went through the opening
 MIN_BEAMS = 3
 AGREEMENT = 0.7
@@ -42,12 +46,15 @@ def door_state_from_scan(
         wx, wy = ax - pose.x, ay - pose.y
         t = (wx * uy - wy * ux) / denom
         s = (wx * dy - wy * dx) / denom
+    # along the door, how far the beam drifts while it crosses the wall's half thickness
+    drift = WALL_HALF_THICKNESS_M * np.abs(dx * ux + dy * uy) / np.maximum(np.abs(denom), 1e-9)
+    margin = FRAME_MARGIN_M + drift
     crossing = (
         (np.abs(denom) > 1e-9)
         & (t > 0.0)
         & (t < max_range_m)
-        & (s > FRAME_MARGIN_M)
-        & (s < length - FRAME_MARGIN_M)
+        & (s > margin)
+        & (s < length - margin)
     )
     if int(crossing.sum()) < MIN_BEAMS:
         return None

@@ -106,13 +106,18 @@ def engine_available(engine: str) -> bool:
     return True
 
 
-def open_engine(engine: str) -> Any:
-    """The unified-planning engine for a config name, its package imported only now."""
+def require_engine(engine: str) -> None:
+    """A one-line ConfigError saying what to install when the engine's package is missing."""
     if not engine_available(engine):
         package = _PACKAGES[engine].replace("_", "-")
         extra = _EXTRAS.get(engine)
         install = f"pip install 'amiro[{extra}]'" if extra else f"pip install {package}"
         raise ConfigError(f"planning engine {engine} needs the package {package}: {install}")
+
+
+def open_engine(engine: str) -> Any:
+    """The unified-planning engine for a config name, its package imported only now."""
+    require_engine(engine)
     name, module, class_name = _UP_ENGINES[engine]
     add_engine(planning_environment(), name, module, class_name)
     return OneshotPlanner(name=name)
@@ -149,6 +154,7 @@ class HomePlanner:
 
     def __init__(self, config: PlanningConfig | None = None) -> None:
         self.config = config or PlanningConfig()
+        require_engine(self.config.engine)  # before a run starts, not at its first plan
         self.domain = home_domain(self.config.temporal)
         self._engine: Any = None  # opened on the first plan
 
