@@ -35,6 +35,7 @@ from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MoveToNode
+from amiro.navigation.primitives import PrimitivesNode
 from amiro.navigation.stack import build_navigation
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.stack import build_people_finder
@@ -111,6 +112,7 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     places = {name: world.place(name) for name in world.home.places}
     rooms = list(world.home.rooms)
     navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    runtime.add(PrimitivesNode(speed=min(0.2, cfg.navigation.max_speed)))  # forward / rotate
 
     rng_perception, rng_activity = runtime.rng.spawn(2)
     voices = {
