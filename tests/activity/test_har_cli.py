@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from amiro.activity.dataset import subject_body, window
-from amiro.activity.motion import ACTIONS, NTU_ACTION_IDS
+from amiro.activity.labels import ACTIONS, NTU_ACTION_IDS
 from amiro.activity.ntu import Body, SkeletonSequence, write_skeleton_file
 from amiro.activity.onnx_model import ActivityModel
 from amiro.cli import main

@@ -6,7 +6,7 @@ import pytest
 from amiro.activity.augment import drop_joints, occlude
 from amiro.activity.bench import run_bench
 from amiro.activity.dataset import subject_body, window
-from amiro.activity.motion import ACTIONS
+from amiro.activity.labels import ACTIONS
 from amiro.activity.onnx_model import ActivityModel, shipped_model_path
 from amiro.activity.skeleton import visible
 from amiro.core.config import ConfigError

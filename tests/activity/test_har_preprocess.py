@@ -1,6 +1,7 @@
 import numpy as np
 
-from amiro.activity.motion import ACTIONS, FPS, IDLE, Body, View, perform, to_camera
+from amiro.activity.labels import ACTIONS, IDLE
+from amiro.activity.motion import FPS, Body, View, perform, to_camera
 from amiro.activity.normalize import normalize_bones, preprocess
 from amiro.activity.skeleton import PARENT, SEGMENT_LENGTH, J
 

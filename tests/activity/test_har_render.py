@@ -3,7 +3,7 @@
 import numpy as np
 
 from amiro.activity.dataset import subject_body, window
-from amiro.activity.motion import ACTIONS
+from amiro.activity.labels import ACTIONS
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.render import depth_image, project, through_pose_estimator
 from amiro.activity.skeleton import J, visible

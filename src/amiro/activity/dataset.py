@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from amiro.activity.labels import ACTIONS
 from amiro.activity.motion import (
-    ACTIONS,
     FPS,
     Body,
     View,

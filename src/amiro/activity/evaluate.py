@@ -21,7 +21,7 @@ from amiro.activity.dataset import (
     TRAIN_SUBJECTS,
     generate,
 )
-from amiro.activity.motion import ACTIONS, NTU_ACTION_IDS
+from amiro.activity.labels import ACTIONS, NTU_ACTION_IDS
 from amiro.activity.ntu import NTU_NAME, read_skeleton_file
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.render import through_pose_estimator

@@ -14,31 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from amiro.activity.labels import ACTIONS, IDLE
 from amiro.activity.skeleton import NUM_JOINTS, SEGMENT_LENGTH, FloatArray, J
 
-ACTIONS: tuple[str, ...] = (
-    "drink_water",
-    "standing_up",
-    "hand_waving",
-    "play_phone",
-    "typing",
-    "pointing",
-    "sneeze_cough",
-    "touch_chest",
-    "falling",
-)
-NTU_ACTION_IDS: dict[str, int] = {
-    "drink_water": 1,
-    "standing_up": 9,
-    "hand_waving": 23,
-    "play_phone": 29,
-    "typing": 30,
-    "pointing": 31,
-    "sneeze_cough": 41,
-    "touch_chest": 45,
-    "falling": 43,
-}
-IDLE = "idle"  # the simulated residents' resting state: not a class of the model
 FPS = 15.0  # model frame rate: NTU's 30 Hz taken every second frame
 
 SITTING_SHARE = {

@@ -18,8 +18,9 @@ from tqdm import tqdm  # type: ignore[import-untyped]
 
 from amiro.activity.augment import augment
 from amiro.activity.dataset import TRAIN_CAMERAS_DEG, TRAIN_SUBJECTS, WINDOW, generate
+from amiro.activity.labels import ACTIONS
 from amiro.activity.model import LastFrameProbabilities, MultiStageLSTM
-from amiro.activity.motion import ACTIONS, FPS
+from amiro.activity.motion import FPS
 from amiro.activity.normalize import FEATURES_PER_FRAME, preprocess_batch
 from amiro.activity.onnx_model import BOX_HEIGHT_RANGE, METADATA_KEY
 

@@ -5,8 +5,16 @@
 * sensor model: the likelihood field on a subsample of the beams;
 * adaptive resampling: only when the effective sample size drops, low-variance;
 * KLD sampling: as many particles as the spread of the belief needs (min..max);
-* recovery: random particles injected when the short-term average likelihood falls below
-  the long-term one (augmented MCL), which also finds the robot from a wrong initial pose.
+* recovery (augmented MCL, Thrun et al. 8.3.5): ``w_fast`` and ``w_slow`` track the short-
+  and long-term average fit of the scans, and a share ``1 - w_fast / w_slow`` of each
+  resampled set is replaced by poses from the free space.  Each injected pose is the best
+  fit to the current scan among a few uniform draws (sensor resetting), so a lost filter
+  finds the true pose in seconds rather than waiting for a lucky draw;
+* ``global_localization``: a uniform belief over the free space, as ROS amcl's service.
+
+The fit of a scan is the mean per-beam probability (not the product), so a few beams on
+people or moved furniture lower it a little instead of collapsing it.  Both averages start
+at the fit of a scan that matches the map: a filter that starts wrong reads as lost at once.
 """
 
 from __future__ import annotations
@@ -40,7 +48,8 @@ class AmclParams:
     bin_theta: float = math.radians(10.0)
     alpha_slow: float = 0.001
     alpha_fast: float = 0.1
-    lost_ratio: float = 0.3  # inject once short-term fit < this share of the long-term fit
+    injection_candidates: int = 10  # uniform draws scored per injected particle
+    global_particles: int = 2000  # a uniform start needs more hypotheses than tracking
     update_min_d: float = 0.1  # filter only after this much motion (as amcl's update_min_d)
     update_min_a: float = 0.1
     likelihood_temperature: float = 0.3  # softens the product of correlated beams
@@ -60,8 +69,8 @@ class ParticleFilter:
         self.params = params or AmclParams()
         self.particles = np.zeros((0, 3))
         self.weights = np.zeros(0)
-        self.w_slow = 0.0
-        self.w_fast = 0.0
+        self.w_slow = self.w_fast = field.matched_p
+        self._last_scan: tuple[FloatArray, FloatArray] | None = None  # (ranges, angles)
         self._last_odom: Pose2D | None = None  # odometry at the last prediction
         free_rows, free_cols = np.nonzero(field.free)
         self._free_x, self._free_y = field.grid.cell_to_world(free_cols, free_rows)
@@ -78,18 +87,35 @@ class ParticleFilter:
         ]
         self.particles = np.array([pose.x, pose.y, pose.theta]) + noise
         self.weights = np.full(n, 1.0 / n)
+        self._reset_fit()
 
-    def init_global(self) -> None:
-        """Uniform belief over the free space: the robot could be anywhere."""
-        n = self.params.max_particles
-        self.particles = self._random_particles(n)
+    def global_localization(self) -> None:
+        """Uniform belief over the free space: the robot could be anywhere (ROS amcl's
+        ``/global_localization``)."""
+        n = max(self.params.global_particles, self.params.max_particles)
+        self.particles = self._uniform_poses(n)
         self.weights = np.full(n, 1.0 / n)
+        self._reset_fit()
 
-    def _random_particles(self, n: int) -> FloatArray:
+    def _reset_fit(self) -> None:
+        self.w_slow = self.w_fast = self.field.matched_p
+
+    def _uniform_poses(self, n: int) -> FloatArray:
         pick = self.rng.integers(0, len(self._free_x), n)
         return np.column_stack(
             (self._free_x[pick], self._free_y[pick], self.rng.uniform(-math.pi, math.pi, n))
         )
+
+    def _recovery_poses(self, n: int) -> FloatArray:
+        """``n`` poses from the free space, each the best fit to the last scan of a few
+        uniform draws."""
+        k = self.params.injection_candidates
+        candidates = self._uniform_poses(n * k)
+        if self._last_scan is None or k <= 1:
+            return candidates[:n]
+        score = self.field.score(*_endpoints(candidates, *self._last_scan))
+        best = np.argmax(score.reshape(n, k), axis=1)
+        return candidates.reshape(n, k, 3)[np.arange(n), best]
 
     @property
     def initialised(self) -> bool:
@@ -143,35 +169,27 @@ class ParticleFilter:
         ranges, angles = _usable_beams(scan, self.params.beams)
         if ranges.size == 0:
             return
-        th = self.particles[:, 2:3] + angles[None, :]
-        xs = self.particles[:, 0:1] + ranges[None, :] * np.cos(th)
-        ys = self.particles[:, 1:2] + ranges[None, :] * np.sin(th)
-        logw = self.params.likelihood_temperature * self.field.score(xs, ys)
+        self._last_scan = (ranges, angles)
+        logp = self.field.log_likelihoods(*_endpoints(self.particles, ranges, angles))
+        fit = float(self.weights @ np.exp(logp).mean(axis=1))
+        logw = self.params.likelihood_temperature * logp.sum(axis=1, dtype=np.float64)
         logw += np.log(self.weights + 1e-300)
-        top = float(logw.max())
-        w = np.exp(logw - top)
-        total = float(w.sum())
-        self.weights = w / total
-        self._track_likelihood(scan_mean_logp=(top + math.log(total)) / max(1, ranges.size))
+        w = np.exp(logw - logw.max())
+        self.weights = w / w.sum()
+        self._track_fit(fit)
         n_eff = 1.0 / float(np.sum(self.weights**2))
-        if n_eff < 0.5 * len(self.weights) or self._inject_share() > 0.0:
+        if n_eff < 0.5 * len(self.weights) or self.inject_share() > 0.0:
             self._resample()
 
-    def _track_likelihood(self, scan_mean_logp: float) -> None:
-        """Short- and long-term averages of how well scans fit (per beam, as a probability)."""
-        avg = math.exp(scan_mean_logp / self.params.likelihood_temperature)
+    def _track_fit(self, fit: float) -> None:
+        """Short- and long-term averages of how well scans fit (mean per-beam probability)."""
         p = self.params
-        self.w_slow = (
-            avg if self.w_slow == 0.0 else self.w_slow + p.alpha_slow * (avg - self.w_slow)
-        )
-        self.w_fast = (
-            avg if self.w_fast == 0.0 else self.w_fast + p.alpha_fast * (avg - self.w_fast)
-        )
+        self.w_slow += p.alpha_slow * (fit - self.w_slow)
+        self.w_fast += p.alpha_fast * (fit - self.w_fast)
 
-    def _inject_share(self) -> float:
-        if self.w_slow <= 0.0:
-            return 0.0
-        return max(0.0, 1.0 - self.w_fast / (self.params.lost_ratio * self.w_slow))
+    def inject_share(self) -> float:
+        """Share of the next resampled set drawn from the free space: how lost we are."""
+        return max(0.0, 1.0 - self.w_fast / self.w_slow)
 
     def _resample(self) -> None:
         """Low-variance resampling to a KLD-sized set, with random particles when lost."""
@@ -183,10 +201,9 @@ class ParticleFilter:
         chosen = chosen[self.rng.permutation(len(chosen))[:n]] if n < len(chosen) else chosen
         if n > len(chosen):
             chosen = chosen[self.rng.integers(0, len(chosen), n)]
-        n_random = round(self._inject_share() * n)
+        n_random = round(self.inject_share() * n)
         if n_random:
-            chosen[:n_random] = self._random_particles(n_random)
-            self.w_fast = self.w_slow  # as amcl: one injection per detected drop
+            chosen[:n_random] = self._recovery_poses(n_random)
         self.particles = chosen.copy()
         self.weights = np.full(len(chosen), 1.0 / len(chosen))
 
@@ -231,6 +248,16 @@ class ParticleFilter:
 
 def wrap_angle_array(a: FloatArray) -> FloatArray:
     return np.asarray((a + math.pi) % (2.0 * math.pi) - math.pi)
+
+
+def _endpoints(
+    poses: FloatArray, ranges: FloatArray, angles: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """World coordinates of every beam's endpoint from every pose, shaped (poses, beams)."""
+    th = poses[:, 2:3] + angles[None, :]
+    xs = poses[:, 0:1] + ranges[None, :] * np.cos(th)
+    ys = poses[:, 1:2] + ranges[None, :] * np.sin(th)
+    return xs, ys
 
 
 def _usable_beams(scan: LaserScan, count: int) -> tuple[FloatArray, FloatArray]:

@@ -29,12 +29,17 @@ class LikelihoodField:
         self.floor = float(np.log(floor))
         self.log_p = np.log(p).astype(np.float32)
         self.free = grid.data == FREE
+        # what a beam ending one cell from a wall scores: the fit of a scan that matches
+        self.matched_p = float(z_hit * np.exp(-0.5 * (grid.resolution / sigma) ** 2) + floor)
 
-    def score(self, xs: FloatArray, ys: FloatArray) -> FloatArray:
-        """Summed log-likelihood over the last axis of endpoint arrays shaped (..., beams)."""
+    def log_likelihoods(self, xs: FloatArray, ys: FloatArray) -> FloatArray:
+        """Log-likelihood of every endpoint (float32, shaped like ``xs``)."""
         col, row = self.grid.world_to_cell(xs, ys)
         inside = self.grid.in_bounds(col, row)
         h, w = self.log_p.shape
         flat = np.clip(row, 0, h - 1) * w + np.clip(col, 0, w - 1)
-        logp = np.where(inside, self.log_p.reshape(-1)[flat], np.float32(self.floor))
-        return np.asarray(logp.sum(axis=-1), dtype=np.float64)
+        return np.where(inside, self.log_p.reshape(-1)[flat], np.float32(self.floor))
+
+    def score(self, xs: FloatArray, ys: FloatArray) -> FloatArray:
+        """Summed log-likelihood over the last axis of endpoint arrays shaped (..., beams)."""
+        return np.asarray(self.log_likelihoods(xs, ys).sum(axis=-1), dtype=np.float64)

@@ -65,7 +65,7 @@ class AmclLocalizer:
         rng = self.rng if self.rng is not None else node.runtime.rng.spawn(1)[0]
         self.pf = pf = ParticleFilter(self.field, rng, self.params)
         if self.initial_pose is None:
-            pf.init_global()
+            pf.global_localization()
         else:
             pf.init_pose(self.initial_pose)
         self._anchor = None

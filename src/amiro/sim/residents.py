@@ -14,6 +14,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from amiro.activity.labels import ACTIONS, IDLE
 from amiro.core.messages import Point
 from amiro.sim.phrases import INTENTS, LANGUAGES, PHRASES, context_of
 
@@ -21,18 +22,7 @@ Posture = Literal["standing", "sitting_desk", "sitting_couch", "lying_couch"]
 ReplyKind = Literal["confirm", "deny", "postpone", "silence"]
 
 POSTURES: tuple[str, ...] = ("standing", "sitting_desk", "sitting_couch", "lying_couch")
-ACTIVITIES: tuple[str, ...] = (
-    "drink_water",
-    "standing_up",
-    "hand_waving",
-    "play_phone",
-    "typing",
-    "pointing",
-    "sneeze_cough",
-    "touch_chest",
-    "falling",
-    "idle",
-)
+ACTIVITIES: tuple[str, ...] = (*ACTIONS, IDLE)
 PROMPT_KINDS: tuple[str, ...] = (
     "hydration_reminder",
     "postpone_question",

@@ -13,7 +13,8 @@ from collections import deque
 
 import numpy as np
 
-from amiro.activity.motion import FPS, IDLE, Body, perform
+from amiro.activity.labels import IDLE
+from amiro.activity.motion import FPS, Body, perform
 from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
 from amiro.sim.residents import Resident
 from amiro.sim.simulator import Simulation
