@@ -111,26 +111,19 @@ def observe_objects(
     rng: np.random.Generator,
 ) -> list[ObjectObservation]:
     """One observation per object whose centre is in view and in line of sight."""
-    p = camera.params
-    cam = camera.position(robot_pose, head_yaw)
     seen: list[ObjectObservation] = []
     for obj in objects:
         c = obj.centre
-        opt = camera.to_optical(
-            np.vstack([[c.x, c.y, c.z], obj.corners()]), robot_pose, head_yaw, head_pitch
+        sight = camera.sight(
+            world,
+            robot_pose,
+            head_yaw,
+            head_pitch,
+            np.vstack([[c.x, c.y, c.z], obj.corners()]),
+            obj.hi[2],
+            rng,
         )
-        z = float(opt[0, 2])
-        if not 0.1 < z <= p.max_range:
-            continue
-        u, v = camera.project(opt[:1])[0]
-        if not (0.0 <= u < p.width and 0.0 <= v < p.image_height):
-            continue
-        if not world.line_of_sight((cam[0], cam[1]), (c.x, c.y), obj.hi[2]):
-            continue
-        uv = camera.project(opt[1:][opt[1:, 2] > 0.05])
-        u0, v0 = np.clip(uv.min(axis=0), 0.0, [p.width, p.image_height])
-        u1, v1 = np.clip(uv.max(axis=0), 0.0, [p.width, p.image_height])
-        box = BoundingBox2D(float(u0 + u1) / 2, float(v0 + v1) / 2, float(u1 - u0), float(v1 - v0))
-        depth = z + p.depth_sigma * z**2 * float(rng.standard_normal())
-        seen.append(ObjectObservation(obj.label, box, depth, c))
+        if sight is not None:
+            box, depth = sight
+            seen.append(ObjectObservation(obj.label, box, depth, c))
     return seen

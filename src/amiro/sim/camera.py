@@ -108,6 +108,38 @@ class Camera:
             [self.cx + self.fx * optical[:, 0] / z, self.cy + self.fy * optical[:, 1] / z], axis=1
         )
 
+    def sight(
+        self,
+        world: World,
+        robot_pose: Pose2D,
+        head_yaw: float,
+        head_pitch: float,
+        points: FloatArray,
+        height: float,
+        rng: np.random.Generator,
+    ) -> tuple[BoundingBox2D, float] | None:
+        """Pixel box and noisy z-depth of a body given by its centre (``points[0]``) and the
+        corners of its box (the rest), all in the map frame; None when its centre is out of
+        view or out of range, or walls or anything taller than ``height`` hide it."""
+        p = self.params
+        opt = self.to_optical(points, robot_pose, head_yaw, head_pitch)
+        z = float(opt[0, 2])
+        if not 0.1 < z <= p.max_range:
+            return None
+        u, v = self.project(opt[:1])[0]
+        if not (0.0 <= u < p.width and 0.0 <= v < p.image_height):
+            return None
+        cam = self.position(robot_pose, head_yaw)
+        if not world.line_of_sight((cam[0], cam[1]), (points[0, 0], points[0, 1]), height):
+            return None
+        uv = self.project(opt[1:][opt[1:, 2] > 0.05])
+        u0, v0 = np.clip(uv.min(axis=0), 0.0, [p.width, p.image_height])
+        u1, v1 = np.clip(uv.max(axis=0), 0.0, [p.width, p.image_height])
+        box = BoundingBox2D(
+            float(u0 + u1) / 2.0, float(v0 + v1) / 2.0, float(u1 - u0), float(v1 - v0)
+        )
+        return box, z + p.depth_sigma * z**2 * float(rng.standard_normal())
+
     def observe(
         self,
         world: World,
@@ -118,35 +150,24 @@ class Camera:
         rng: np.random.Generator,
     ) -> list[CameraObservation]:
         """One observation per present resident in view and in line of sight."""
-        p = self.params
         cam = self.position(robot_pose, head_yaw)
         out: list[CameraObservation] = []
         for res in residents:
             if not res.present:
                 continue
             torso = res.torso()
-            opt = self.to_optical(
-                np.vstack([[torso.x, torso.y, torso.z], res.body_corners()]),
+            seen = self.sight(
+                world,
                 robot_pose,
                 head_yaw,
                 head_pitch,
+                np.vstack([[torso.x, torso.y, torso.z], res.body_corners()]),
+                res.body.z_max,
+                rng,
             )
-            z_torso = float(opt[0, 2])
-            if not 0.1 < z_torso <= p.max_range:
+            if seen is None:
                 continue
-            uv_torso = self.project(opt[:1])[0]
-            if not (0.0 <= uv_torso[0] < p.width and 0.0 <= uv_torso[1] < p.image_height):
-                continue
-            if not world.line_of_sight((cam[0], cam[1]), (res.x, res.y), res.body.z_max):
-                continue
-            front = opt[1:][opt[1:, 2] > 0.05]
-            uv = self.project(front)
-            u0, v0 = np.clip(uv.min(axis=0), 0.0, [p.width, p.image_height])
-            u1, v1 = np.clip(uv.max(axis=0), 0.0, [p.width, p.image_height])
-            bbox = BoundingBox2D(
-                float(u0 + u1) / 2.0, float(v0 + v1) / 2.0, float(u1 - u0), float(v1 - v0)
-            )
-            depth = z_torso + p.depth_sigma * z_torso**2 * float(rng.standard_normal())
+            bbox, depth = seen
             out.append(
                 CameraObservation(
                     name=res.name,
