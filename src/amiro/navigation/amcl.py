@@ -48,7 +48,7 @@ class AmclParams:
     bin_theta: float = math.radians(10.0)
     alpha_slow: float = 0.001
     alpha_fast: float = 0.1
-    injection_candidates: int = 10  # uniform draws scored per injected particle
+    injection_candidates: int = 10  # uniform draws scored per injected particle (>= 1)
     global_particles: int = 2000  # a uniform start needs more hypotheses than tracking
     update_min_d: float = 0.1  # filter only after this much motion (as amcl's update_min_d)
     update_min_a: float = 0.1
@@ -70,7 +70,6 @@ class ParticleFilter:
         self.particles = np.zeros((0, 3))
         self.weights = np.zeros(0)
         self.w_slow = self.w_fast = field.matched_p
-        self._last_scan: tuple[FloatArray, FloatArray] | None = None  # (ranges, angles)
         self._last_odom: Pose2D | None = None  # odometry at the last prediction
         free_rows, free_cols = np.nonzero(field.free)
         self._free_x, self._free_y = field.grid.cell_to_world(free_cols, free_rows)
@@ -106,16 +105,14 @@ class ParticleFilter:
             (self._free_x[pick], self._free_y[pick], self.rng.uniform(-math.pi, math.pi, n))
         )
 
-    def _recovery_poses(self, n: int) -> FloatArray:
-        """``n`` poses from the free space, each the best fit to the last scan of a few
-        uniform draws."""
+    def _recovery_poses(self, n: int, ranges: FloatArray, angles: FloatArray) -> FloatArray:
+        """``n`` poses from the free space, each the best fit to the scan of a few uniform
+        draws."""
         k = self.params.injection_candidates
         candidates = self._uniform_poses(n * k)
-        if self._last_scan is None or k <= 1:
-            return candidates[:n]
-        score = self.field.score(*_endpoints(candidates, *self._last_scan))
+        score = self.field.score(*_endpoints(candidates, ranges, angles))
         best = np.argmax(score.reshape(n, k), axis=1)
-        return candidates.reshape(n, k, 3)[np.arange(n), best]
+        return np.asarray(candidates.reshape(n, k, 3)[np.arange(n), best], dtype=np.float64)
 
     @property
     def initialised(self) -> bool:
@@ -169,17 +166,15 @@ class ParticleFilter:
         ranges, angles = _usable_beams(scan, self.params.beams)
         if ranges.size == 0:
             return
-        self._last_scan = (ranges, angles)
         logp = self.field.log_likelihoods(*_endpoints(self.particles, ranges, angles))
-        fit = float(self.weights @ np.exp(logp).mean(axis=1))
         logw = self.params.likelihood_temperature * logp.sum(axis=1, dtype=np.float64)
         logw += np.log(self.weights + 1e-300)
         w = np.exp(logw - logw.max())
         self.weights = w / w.sum()
-        self._track_fit(fit)
+        self._track_fit(float(self.weights @ np.exp(logp).mean(axis=1)))
         n_eff = 1.0 / float(np.sum(self.weights**2))
         if n_eff < 0.5 * len(self.weights) or self.inject_share() > 0.0:
-            self._resample()
+            self._resample(ranges, angles)
 
     def _track_fit(self, fit: float) -> None:
         """Short- and long-term averages of how well scans fit (mean per-beam probability)."""
@@ -191,7 +186,7 @@ class ParticleFilter:
         """Share of the next resampled set drawn from the free space: how lost we are."""
         return max(0.0, 1.0 - self.w_fast / self.w_slow)
 
-    def _resample(self) -> None:
+    def _resample(self, ranges: FloatArray, angles: FloatArray) -> None:
         """Low-variance resampling to a KLD-sized set, with random particles when lost."""
         n_old = len(self.weights)
         positions = (self.rng.uniform() + np.arange(n_old)) / n_old
@@ -203,21 +198,14 @@ class ParticleFilter:
             chosen = chosen[self.rng.integers(0, len(chosen), n)]
         n_random = round(self.inject_share() * n)
         if n_random:
-            chosen[:n_random] = self._recovery_poses(n_random)
+            chosen[:n_random] = self._recovery_poses(n_random, ranges, angles)
         self.particles = chosen.copy()
         self.weights = np.full(len(chosen), 1.0 / len(chosen))
 
     def _kld_size(self, particles: FloatArray) -> int:
         """Fox's KLD bound on the sample count for the number of occupied histogram bins."""
         p = self.params
-        bins = np.column_stack(
-            (
-                np.floor(particles[:, 0] / p.bin_xy),
-                np.floor(particles[:, 1] / p.bin_xy),
-                np.floor(wrap_angle_array(particles[:, 2]) / p.bin_theta),
-            )
-        )
-        k = len(np.unique(bins, axis=0))
+        k = len(np.unique(_bins(particles, p.bin_xy, p.bin_theta), axis=0))
         if k <= 1:
             return p.min_particles
         a = 2.0 / (9.0 * (k - 1))
@@ -227,23 +215,55 @@ class ParticleFilter:
 
     # --- estimate -----------------------------------------------------------------------
     def estimate(self) -> Pose2D:
-        """Weighted mean of the particles near the most likely one (the main cluster)."""
-        best = self.particles[int(np.argmax(self.weights))]
-        near = np.hypot(self.particles[:, 0] - best[0], self.particles[:, 1] - best[1]) < 0.5
-        w = self.weights * near
-        w = w / w.sum()
-        x = float(w @ self.particles[:, 0])
-        y = float(w @ self.particles[:, 1])
-        th = math.atan2(
-            float(w @ np.sin(self.particles[:, 2])), float(w @ np.cos(self.particles[:, 2]))
-        )
-        return Pose2D(x, y, th)
+        """Weighted mean of the heaviest cluster: the pose bin (0.5 m, 30 degrees) holding
+        the most weight, widened to the particles near it.  After resampling the weights
+        are uniform, so the heaviest bin is the densest one; injected strays never win."""
+        keys = _bins(self.particles, _CLUSTER_XY, _CLUSTER_THETA)
+        _, bin_of = np.unique(keys, axis=0, return_inverse=True)
+        bin_of = bin_of.reshape(-1)
+        best = int(np.argmax(np.bincount(bin_of, weights=self.weights)))
+        seed = _weighted_pose(self.particles, self.weights * (bin_of == best))
+        near = (
+            np.hypot(self.particles[:, 0] - seed.x, self.particles[:, 1] - seed.y) < _CLUSTER_XY
+        ) & (np.abs(wrap_angle_array(self.particles[:, 2] - seed.theta)) < _CLUSTER_THETA)
+        return _weighted_pose(self.particles, self.weights * near)
 
     def spread(self) -> float:
-        """Weighted standard deviation of the particle positions (m): the belief's size."""
-        mean = self.weights @ self.particles[:, :2]
-        d2 = np.sum((self.particles[:, :2] - mean) ** 2, axis=1)
-        return float(math.sqrt(float(self.weights @ d2)))
+        """The belief's size (m): the distance from the estimate holding half the weight.
+
+        A median, so the few particles injected into a healthy filter do not make it look
+        wide (a wide belief is filtered on every scan, which would inject again)."""
+        est = self.estimate()
+        dist = np.hypot(self.particles[:, 0] - est.x, self.particles[:, 1] - est.y)
+        order = np.argsort(dist)
+        half = min(int(np.searchsorted(np.cumsum(self.weights[order]), 0.5)), len(order) - 1)
+        return float(dist[order[half]])
+
+
+_CLUSTER_XY = 0.5
+_CLUSTER_THETA = math.radians(30.0)
+
+
+def _bins(particles: FloatArray, bin_xy: float, bin_theta: float) -> FloatArray:
+    """Histogram bin of every particle, one row of (x, y, theta) bin indices each."""
+    return np.column_stack(
+        (
+            np.floor(particles[:, 0] / bin_xy),
+            np.floor(particles[:, 1] / bin_xy),
+            np.floor(wrap_angle_array(particles[:, 2]) / bin_theta),
+        )
+    )
+
+
+def _weighted_pose(particles: FloatArray, weights: FloatArray) -> Pose2D:
+    """Weighted mean position and circular-mean heading."""
+    w = weights / weights.sum()
+    th = particles[:, 2]
+    return Pose2D(
+        float(w @ particles[:, 0]),
+        float(w @ particles[:, 1]),
+        math.atan2(float(w @ np.sin(th)), float(w @ np.cos(th))),
+    )
 
 
 def wrap_angle_array(a: FloatArray) -> FloatArray:

@@ -21,6 +21,7 @@ from amiro.navigation.poses import between, compose
 PoseCallback = Callable[[Pose2D], None]
 LOCALIZATION_TOPIC = "/amiro/localization/pose"
 INITIAL_POSE_TOPIC = "/initialpose"
+GLOBAL_LOCALIZATION_SERVICE = "/global_localization"  # as ROS amcl's std_srvs/Empty
 GROUND_TRUTH_TOPIC = "/amiro/sim/ground_truth"
 
 
@@ -39,6 +40,9 @@ class OracleLocalizer:
 
 class AmclLocalizer:
     """Particle filter on the bus; ``initial_pose`` None starts from global localisation.
+
+    ``/initialpose`` re-seeds the belief around a pose; the ``/global_localization`` service
+    (any request; answers the particle count) spreads it over the whole free space.
 
     Without an ``rng`` the filter draws from a child of the runtime's seeded generator.
     """
@@ -73,6 +77,14 @@ class AmclLocalizer:
         node.create_subscription("/odom", Odometry, self._on_odom, depth=1)
         node.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
         node.create_subscription(INITIAL_POSE_TOPIC, PoseStamped, self._on_initial_pose)
+        node.create_service(GLOBAL_LOCALIZATION_SERVICE, self.global_localization)
+
+    def global_localization(self, _request: object = None) -> int:
+        """Forget the pose: the robot could be anywhere; returns the particle count."""
+        assert self.pf is not None
+        self.pf.global_localization()
+        self._fix()
+        return len(self.pf.particles)
 
     def _on_initial_pose(self, msg: PoseStamped) -> None:
         assert self.pf is not None
