@@ -111,7 +111,12 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     world = sim.world
     places = {name: world.place(name) for name in world.home.places}
     rooms = list(world.home.rooms)
-    navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    # As an operator would on /initialpose: AMCL starts where the robot was put down, unless
+    # navigation.start_place is None (global localisation from an unknown pose).
+    initial_pose = None if cfg.navigation.start_place is None else sim.robot.true_pose
+    navigation = runtime.add(
+        build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation, initial_pose)
+    )
     runtime.add(PrimitivesNode(speed=min(0.2, cfg.navigation.max_speed)))  # forward / rotate
 
     rng_perception, rng_activity = runtime.rng.spawn(2)

@@ -122,7 +122,13 @@ def test_closed_bedroom_door_fails_unreachable_once_seen() -> None:
     assert not handle.done and len(rig.paths) == 1
     first = rig.paths[0].poses
     assert first[-1] == rig.sim.world.place("bedroom")
-    assert any(1.0 <= p.x <= 1.9 and abs(p.y - 5.0) < 0.15 for p in first)
+    # the planned path crosses the wall line y = 5 inside the bedroom door's opening
+    crossings = [
+        a.x + (5.0 - a.y) * (b.x - a.x) / (b.y - a.y)
+        for a, b in itertools.pairwise(first)
+        if (a.y - 5.0) * (b.y - 5.0) <= 0 and a.y != b.y
+    ]
+    assert crossings and all(1.0 <= x <= 1.9 for x in crossings)
     elapsed = rig.run(handle, 60.0)
     assert handle.status is GoalStatus.ABORTED
     assert handle.result.reason == "unreachable"

@@ -13,6 +13,10 @@ from amiro.navigation.costmap import Costmap
 _BERTH_M = 0.12  # shortcuts stay this much further from obstacles than the lethal zone
 
 
+START_REACH_M = 0.3  # a robot inside an inflation zone starts from the nearest free cell
+GOAL_TOLERANCE_M = 0.15  # how far from a goal in an inflation zone the path may end
+
+
 class GlobalPlanner:
     def __init__(self, costmap: Costmap) -> None:
         self.costmap = costmap
@@ -35,36 +39,46 @@ class GlobalPlanner:
             poses.append(Pose2D(x, y, theta))
         return poses
 
-    def _start_cell(self, start: Pose2D) -> Cell | None:
-        """The robot's cell, or the nearest free one when it stands inside an inflation zone."""
+    def _nearest_free(self, x: float, y: float, reach_m: float) -> Cell | None:
+        """The cell at (x, y), or the nearest non-lethal one within ``reach_m`` of it."""
         frame = self.costmap.frame
-        cell = frame.to_cell(start.x, start.y)
+        cell = frame.to_cell(x, y)
         if not frame.inside(*cell):
             return None
         lethal = self.costmap.lethal
         if not lethal[cell]:
             return cell
         r0, c0 = cell
-        reach = math.ceil(0.3 / frame.resolution)
+        reach = math.ceil(reach_m / frame.resolution)
         best: tuple[float, Cell] | None = None
         for r in range(max(0, r0 - reach), min(frame.height, r0 + reach + 1)):
             for c in range(max(0, c0 - reach), min(frame.width, c0 + reach + 1)):
-                if not lethal[r, c]:
-                    d = (r - r0) ** 2 + (c - c0) ** 2
-                    if best is None or d < best[0]:
-                        best = (d, (r, c))
+                d = (r - r0) ** 2 + (c - c0) ** 2
+                if not lethal[r, c] and d <= reach * reach and (best is None or d < best[0]):
+                    best = (d, (r, c))
         return None if best is None else best[1]
 
+    def _start_cell(self, start: Pose2D) -> Cell | None:
+        """The robot's cell, or the nearest free one when it stands inside an inflation zone."""
+        return self._nearest_free(start.x, start.y, START_REACH_M)
+
     def plan_to_pose(self, start: Pose2D, goal: Pose2D) -> list[Pose2D] | None:
+        """Path ending at ``goal``; a goal just inside an inflation zone (a place next to
+        furniture, a waypoint by a door the lidar now shows closed) is reached at the nearest
+        free cell within ``GOAL_TOLERANCE_M``, as planners' goal tolerance does."""
         s = self._start_cell(start)
-        g = self.costmap.frame.to_cell(goal.x, goal.y)
-        if s is None or not self.costmap.frame.inside(*g):
+        g = self._nearest_free(goal.x, goal.y, GOAL_TOLERANCE_M)
+        if s is None or g is None:
             return None
         cells = astar(self.costmap.lethal, self.costmap.cost, s, {g})
         if cells is None:
             return None
         path = self._to_poses(cells, goal.theta, start)
-        path[-1] = goal
+        if g == self.costmap.frame.to_cell(goal.x, goal.y):
+            path[-1] = goal
+        else:
+            x, y = self.costmap.frame.to_world(*g)
+            path[-1] = Pose2D(x, y, goal.theta)
         return path
 
     def plan_near(

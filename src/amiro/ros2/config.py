@@ -2,7 +2,8 @@
 
 A process has a role: ``sim`` (the robot: simulator, or a real robot's adapter), ``edge``
 (navigation, perception, activity, behaviour engine) or ``cloud`` (smart environment,
-notifications' ledger, watchdog).  Unset topic lists take the role's defaults below.
+notifications' ledger, watchdog; with ``serve_services: [/amiro/dialogue/understand]`` also
+the dialogue).  Unset topic lists take the role's defaults below.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
     "sim": ("/cmd_vel", "/amiro/head/cmd", "/amiro/say"),
     "edge": (
         "/scan",
+        "/odom",  # AMCL, the default localisation, needs odometry as well as the scan
         "/amiro/sim/ground_truth",
         "/amiro/sim/observations",
         "/amiro/speech/heard",
@@ -79,6 +81,12 @@ class NodeConfig(Section):
     )
     call_actions: tuple[str, ...] = Field(
         default=(), description="actions served by another process, sent from here"
+    )
+    serve_services: tuple[str, ...] = Field(
+        default=(), description="services answered here, offered over ROS 2"
+    )
+    call_services: tuple[str, ...] = Field(
+        default=(), description="services answered by another process, called from here"
     )
     action_timeout_s: float = Field(
         default=3.0, gt=0, description="a remote goal unheard of this long (sim s) aborts"

@@ -16,7 +16,9 @@ from typing import Any, Generic, TypeVar
 from pydantic import TypeAdapter, ValidationError
 
 from amiro.core.config import ConfigError
+from amiro.core.messages import SpeechHeard
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToResult
+from amiro.ros2.dialogue import UNDERSTAND_SERVICE, Understood
 
 T = TypeVar("T")
 
@@ -104,4 +106,16 @@ def known_action(name: str) -> ActionSpec:
     spec = ACTIONS.get(name)
     if spec is None:
         raise ConfigError(f"no ROS 2 action named {name} (known: {', '.join(sorted(ACTIONS))})")
+    return spec
+
+
+SERVICES: dict[str, ServiceSpec] = {
+    spec.name: spec for spec in (service_spec(UNDERSTAND_SERVICE, SpeechHeard, Understood),)
+}
+
+
+def known_service(name: str) -> ServiceSpec:
+    spec = SERVICES.get(name)
+    if spec is None:
+        raise ConfigError(f"no ROS 2 service named {name} (known: {', '.join(sorted(SERVICES))})")
     return spec

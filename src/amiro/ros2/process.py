@@ -29,8 +29,9 @@ from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
 from amiro.ros2.config import NodeConfig
 from amiro.ros2.context import RosContext
 from amiro.ros2.endpoint import WireEndpoint
-from amiro.ros2.interfaces import known_action
+from amiro.ros2.interfaces import known_action, known_service
 from amiro.ros2.roles import BUILDERS
+from amiro.ros2.services import RemoteService, ServiceExporter
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import SystemConfig
 
@@ -100,6 +101,8 @@ def run_process(
     cfg = system_config(node, seed)
     served = [known_action(name) for name in node.serve_actions]
     called = [known_action(name) for name in node.call_actions]
+    exported = [known_service(name) for name in node.serve_services]
+    imported = [known_service(name) for name in node.call_services]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
     clock: Clock = SimClock(speed=node.speed) if node.role == "sim" else FollowedClock(ros)
     runtime = Runtime(clock, seed=seed)
@@ -110,6 +113,8 @@ def run_process(
     endpoints += [
         runtime.add(RemoteActionServer(ros, spec, node.action_timeout_s)) for spec in called
     ]
+    services: list[WireEndpoint] = [runtime.add(ServiceExporter(ros, s)) for s in exported]
+    services += [runtime.add(RemoteService(ros, spec)) for spec in imported]
     parts = BUILDERS[node.role](runtime, process, node, cfg)
     out = events_path.open("a", encoding="utf-8") if events_path is not None else None
     events = EventLog(runtime, out)
@@ -138,6 +143,7 @@ def run_process(
             "skipped": bridge.skipped,
         },
         "actions": {e.name: asdict(e.stats) for e in endpoints},
+        "services": {e.name: asdict(e.stats) for e in services},
         "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in events.acks],
         "events": events.events,
         **parts.summary(),

@@ -22,6 +22,9 @@ from amiro.core.node import Node
 from amiro.core.runtime import Runtime
 from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.output import BusSpeechOutput
+from amiro.dialogue.ports import Understanding
+from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.stack import build_dialogue
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.navigation.localization import GROUND_TRUTH_TOPIC, LOCALIZATION_TOPIC
@@ -30,6 +33,7 @@ from amiro.navigation.stack import build_navigation
 from amiro.perception.oracle import OraclePeopleFinder
 from amiro.ros2.boundary import NavigationState, ObservationFeed, ObservationPublisher
 from amiro.ros2.config import NodeConfig
+from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding, UnderstandingService
 from amiro.ros2.health import HeartbeatNode, NotificationLedger, Watchdog
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.world import World, default_home_path
@@ -97,6 +101,11 @@ def build_edge_role(
     )
     feed = ObservationFeed(runtime.bus)
     remote_sim = cast(Simulation, feed)  # the oracles only call observe()
+    nlu: Understanding = (
+        RemoteUnderstanding(runtime.bus)
+        if UNDERSTAND_SERVICE in node.call_services
+        else OracleUnderstanding()
+    )
     rng_perception, rng_activity = runtime.rng.spawn(2)
     modules = {
         "clock": runtime.clock,
@@ -107,7 +116,7 @@ def build_edge_role(
         ),
         "activity": OracleActivityRecognizer(remote_sim, rng_activity, cfg.activity.accuracy),
         "speech": BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second),
-        "nlu": OracleUnderstanding(),
+        "nlu": nlu,
     }
     engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
     handlers = HandlerRegistry(engine)
@@ -128,6 +137,16 @@ def build_edge_role(
     return RoleParts(summary)
 
 
+def _dialogue_service(runtime: Runtime, cfg: SystemConfig) -> UnderstandingService:
+    """The dialogue stack (NLU, dialogue manager, TTS if configured) with its understanding
+    offered to the edge's Listen tasks."""
+    voices = {
+        r.name: SpeakerProfile.model_validate({"lang": r.language}) for r in cfg.sim.residents
+    }
+    dialogue = build_dialogue(runtime, cfg.dialogue, voices)
+    return runtime.add(UnderstandingService(dialogue.nlu))
+
+
 def build_cloud_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
@@ -139,13 +158,22 @@ def build_cloud_role(
     runtime.add(RulesNode(list(env.rules), env.home_id))
     ledger = runtime.add(NotificationLedger())
     watchdog = runtime.add(Watchdog(dict(node.watch)))
+    understanding = (
+        _dialogue_service(runtime, cfg) if UNDERSTAND_SERVICE in node.serve_services else None
+    )
 
     def summary() -> dict[str, Any]:
-        return {
+        report: dict[str, Any] = {
             "pending_notifications": sorted(ledger.pending),
             "redelivered": ledger.resent,
             "lost": {name: peer.lost for name, peer in watchdog.peers.items()},
         }
+        if understanding is not None:
+            report["understood"] = [
+                {"intent": u.intent, "confidence": round(u.confidence, 3)}
+                for u in understanding.answered
+            ]
+        return report
 
     return RoleParts(summary)
 

@@ -1,0 +1,70 @@
+"""Dialogue in the cloud: the edge's Listen understands answers through a service that the
+cloud's dialogue stack answers, over ROS 2, with sim, edge and cloud as three OS processes."""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+from pathlib import Path
+
+import pytest
+
+from amiro.core.clock import SimClock
+from amiro.core.messages import SpeechHeard
+from amiro.core.runtime import Runtime
+from amiro.dialogue.oracle import OracleUnderstanding
+from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding, UnderstandingService
+from amiro.ros2.launch import Launcher, load_deployment
+
+DEPLOYMENT = Path(
+    str(resources.files("amiro").joinpath("data/deployments/hydration-dialogue-cloud.yaml"))
+)
+
+
+def test_remote_understanding_answers_through_the_bus_service() -> None:
+    runtime = Runtime(SimClock())
+    service = runtime.add(UnderstandingService(OracleUnderstanding()))
+    runtime.start()
+    heard = SpeechHeard(text="later", lang="en", speaker="maria", intent="postpone", confidence=0.7)
+    assert RemoteUnderstanding(runtime.bus).intent(heard) == ("postpone", 0.7)
+    assert [u.intent for u in service.answered] == ["postpone"]
+
+
+def test_remote_understanding_without_a_server_reads_as_not_understood() -> None:
+    runtime = Runtime(SimClock())
+    runtime.start()
+    heard = SpeechHeard(text="yes", lang="en", speaker="maria", intent="affirm", confidence=0.9)
+    assert not runtime.bus.has_service(UNDERSTAND_SERVICE)
+    assert RemoteUnderstanding(runtime.bus).intent(heard) == ("out_of_scope", 0.0)
+
+
+@pytest.mark.slow
+def test_listen_understands_in_the_cloud_and_hydration_completes(
+    tmp_path: Path, domain_id: int
+) -> None:
+    launcher = Launcher(load_deployment(DEPLOYMENT), tmp_path, domain_id=domain_id)
+    launcher.start()
+    try:
+        outcome = launcher.run()
+    finally:
+        launcher.stop()
+    assert outcome == "cloud finished"
+    edge = json.loads(launcher.report_path("edge").read_text())
+    cloud = json.loads(launcher.report_path("cloud").read_text())
+    served = cloud["services"][f"ros2_serve:{UNDERSTAND_SERVICE}"]
+    called = edge["services"][f"ros2_call:{UNDERSTAND_SERVICE}"]
+    assert served["received"] >= 1 and served["sent"] == served["received"]
+    assert called["sent"] == called["received"] >= 1
+    assert served["errors"] == 0 and called["errors"] == 0
+    # Listen's intent and confidence are the ones the cloud's NLU gave.
+    listened = [
+        e["detail"]
+        for e in edge["events"]
+        if e["type"] == "task_finished" and e["task"] == "listen"
+    ]
+    assert listened and cloud["understood"]
+    assert listened[-1]["intent"] == cloud["understood"][-1]["intent"] == "affirm"
+    assert round(listened[-1]["confidence"], 3) == cloud["understood"][-1]["confidence"]
+    assert edge["runs"] and edge["runs"][0]["outcome"] == "completed"  # later ones may run on
+    assert cloud["outcome"] == "acknowledged" and cloud["pending_notifications"] == []
+    assert all(c["exit_code"] == 0 for c in launcher.summary())
