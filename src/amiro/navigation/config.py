@@ -24,7 +24,7 @@ class NavigationConfig(Section):
     )
     amcl_particles: int = Field(default=500, ge=10, description="most particles (KLD adapts)")
     amcl_beams: int = Field(default=60, ge=4, description="lidar beams per filter update")
-    planning_resolution: float = Field(default=0.05, gt=0.0)
+    planning_resolution: float = Field(default=0.1, gt=0.0)
     robot_radius: float = Field(default=0.25, gt=0.0)
     safety_margin: float = Field(default=0.08, ge=0.0)
     max_speed: float = Field(default=0.35, gt=0.0)
