@@ -48,6 +48,7 @@ class AmclParams:
     bin_theta: float = math.radians(10.0)
     alpha_slow: float = 0.001
     alpha_fast: float = 0.1
+    fit_trim: float = 0.25  # worst-fitting share of beams left out of the recovery fit
     injection_candidates: int = 10  # uniform draws scored per injected particle (>= 1)
     global_particles: int = 2000  # a uniform start needs more hypotheses than tracking
     update_min_d: float = 0.1  # filter only after this much motion (as amcl's update_min_d)
@@ -171,10 +172,21 @@ class ParticleFilter:
         logw += np.log(self.weights + 1e-300)
         w = np.exp(logw - logw.max())
         self.weights = w / w.sum()
-        self._track_fit(float(self.weights @ np.exp(logp).mean(axis=1)))
+        self._track_fit(float(self.weights @ self._trimmed_fit(logp)))
         n_eff = 1.0 / float(np.sum(self.weights**2))
         if n_eff < 0.5 * len(self.weights) or self.inject_share() > 0.0:
             self._resample(ranges, angles)
+
+    def _trimmed_fit(self, logp: FloatArray) -> FloatArray:
+        """Per particle, the mean probability of its best-fitting beams: beams that hit
+        obstacles the map lacks (boxes, people) say nothing about being lost, so the worst
+        ``fit_trim`` share is left out of the fit that drives recovery."""
+        p = np.exp(logp)
+        keep = max(1, round(p.shape[1] * (1.0 - self.params.fit_trim)))
+        if keep >= p.shape[1]:
+            return np.asarray(p.mean(axis=1), dtype=np.float64)
+        best = np.partition(p, p.shape[1] - keep, axis=1)[:, p.shape[1] - keep :]
+        return np.asarray(best.mean(axis=1), dtype=np.float64)
 
     def _track_fit(self, fit: float) -> None:
         """Short- and long-term averages of how well scans fit (mean per-beam probability)."""
