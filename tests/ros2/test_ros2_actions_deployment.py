@@ -77,4 +77,5 @@ def test_hydration_completes_with_move_to_across_processes(tmp_path: Path, domai
     assert served["errors"] == 0 and called["errors"] == 0
     assert edge["runs"] and edge["runs"][-1]["outcome"] == "completed"
     assert cloud["outcome"] == "acknowledged"
-    assert all(c["exit_code"] == 0 for c in launcher.summary())
+    assert all(c["exit_code"] is not None for c in launcher.summary())
+    assert not launcher.unclean_exits(), launcher.unclean_exits()

@@ -113,6 +113,7 @@ def _launch(args: argparse.Namespace) -> int:
         outcome = "interrupted"
     finally:
         launcher.stop()
+    unclean = sorted(launcher.unclean_exits())
     reports = {}
     for name in launcher.children:
         path = launcher.report_path(name)
@@ -124,6 +125,7 @@ def _launch(args: argparse.Namespace) -> int:
         "wall_time_s": round(wall_seconds() - started, 3),
         "log_dir": str(log_dir),
         "processes": launcher.summary(),
+        "unclean_exits": unclean,
         "launch_events": launcher.events,
         "acks": [
             a
@@ -134,6 +136,8 @@ def _launch(args: argparse.Namespace) -> int:
         "reports": {n: {k: v for k, v in r.items() if k != "events"} for n, r in reports.items()},
     }
     text = f"{dep.name}: {outcome} in {report['wall_time_s']} s; logs in {log_dir}"
+    if report["unclean_exits"]:
+        text += f"\nnot ended cleanly (see their .log): {', '.join(unclean)}"
     return emit_report(args, report, text)
 
 

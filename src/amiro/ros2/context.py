@@ -94,11 +94,13 @@ class RosContext:
     def node_names(self) -> list[str]:
         return [str(n) for n in self.node.get_node_names()]
 
-    def wait_for_nodes(self, names: list[str], timeout_s: float) -> list[str]:
+    def wait_for_nodes(
+        self, names: list[str], timeout_s: float, cancelled: Callable[[], bool] = lambda: False
+    ) -> list[str]:
         """Wait (wall time) until these ROS nodes are on the graph; returns the missing ones."""
         deadline = time.monotonic() + timeout_s
         missing = [n for n in names if n not in self.node_names()]
-        while missing and time.monotonic() < deadline:
+        while missing and time.monotonic() < deadline and not cancelled():
             self.spin(0.1)
             missing = [n for n in names if n not in self.node_names()]
         return missing

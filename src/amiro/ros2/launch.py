@@ -97,6 +97,9 @@ class Launcher:
     def report_path(self, name: str) -> Path:
         return self.log_dir / f"{name}.json"
 
+    def log_path(self, name: str) -> Path:
+        return self.log_dir / f"{name}.log"
+
     def events_path(self, name: str) -> Path:
         return self.log_dir / f"{name}.events.jsonl"
 
@@ -114,7 +117,7 @@ class Launcher:
     def _spawn(self, child: Child) -> None:
         domain = self.domain_id if self.domain_id is not None else self.deployment.domain_id
         env = {**os.environ, **ros_environment(domain, self.deployment.localhost_only)}
-        child.log = (self.log_dir / f"{child.spec.name}.log").open("ab")
+        child.log = self.log_path(child.spec.name).open("ab")
         child.popen = subprocess.Popen(
             self._command(child.spec), env=env, stdout=child.log, stderr=subprocess.STDOUT
         )
@@ -184,6 +187,14 @@ class Launcher:
         for child in self.children.values():
             if child.log is not None:
                 child.log.close()
+
+    def unclean_exits(self, tail_chars: int = 3000) -> dict[str, str]:
+        """Processes that ended with a non-zero code, each with the end of its log."""
+        return {
+            name: self.log_path(name).read_text(errors="replace")[-tail_chars:]
+            for name, child in self.children.items()
+            if child.exit_code not in (0, None)
+        }
 
     def summary(self) -> list[dict[str, Any]]:
         return [

@@ -2,7 +2,8 @@
 
 The ``sim`` role owns time (a paced SimClock, published on ``/clock``) and waits for the
 processes named in ``wait_for`` before starting it; the other roles follow that clock.
-SIGTERM and SIGINT stop the process cleanly: nodes stopped, rclpy shut down, report written.
+SIGTERM and SIGINT stop the process cleanly at its next step: nodes stopped, rclpy shut
+down, report written.
 """
 
 from __future__ import annotations
@@ -78,12 +79,26 @@ def system_config(node: NodeConfig, seed: int) -> SystemConfig:
     return load(SystemConfig, node.system) if node.system is not None else SystemConfig()
 
 
-@contextmanager
-def _stop_on_signals() -> Iterator[None]:
-    def raise_interrupt(signum: int, frame: FrameType | None) -> None:
-        raise KeyboardInterrupt
+class StopRequest:
+    """Set by SIGTERM/SIGINT; the run loop and the followed clock poll it.
 
-    previous = {s: signal.signal(s, raise_interrupt) for s in (signal.SIGTERM, signal.SIGINT)}
+    The handler only sets flags: an exception raised at an arbitrary bytecode (the old
+    KeyboardInterrupt) could land inside rclpy's executor and make its shutdown fail.
+    """
+
+    def __init__(self) -> None:
+        self.requested = False
+        self.clock: FollowedClock | None = None
+
+    def __call__(self, signum: int, frame: FrameType | None) -> None:
+        self.requested = True
+        if self.clock is not None:
+            self.clock.stopping = True
+
+
+@contextmanager
+def _stop_on_signals(stop: StopRequest) -> Iterator[None]:
+    previous = {s: signal.signal(s, stop) for s in (signal.SIGTERM, signal.SIGINT)}
     try:
         yield
     finally:
@@ -98,6 +113,14 @@ def run_process(
     events_path: Path | None = None,
 ) -> dict[str, Any]:
     """Run one process until its stop condition or a signal; returns its report."""
+    stop = StopRequest()
+    with _stop_on_signals(stop):
+        return _run_process(process, node, seed, events_path, stop)
+
+
+def _run_process(
+    process: str, node: NodeConfig, seed: int, events_path: Path | None, stop: StopRequest
+) -> dict[str, Any]:
     cfg = system_config(node, seed)
     served = [known_action(name) for name in node.serve_actions]
     called = [known_action(name) for name in node.call_actions]
@@ -105,6 +128,9 @@ def run_process(
     imported = [known_service(name) for name in node.call_services]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
     clock: Clock = SimClock(speed=node.speed) if node.role == "sim" else FollowedClock(ros)
+    if isinstance(clock, FollowedClock):
+        stop.clock = clock
+        clock.stopping = stop.requested
     runtime = Runtime(clock, seed=seed)
     bridge = runtime.add(
         Ros2Bridge(ros, node.topics_out(), node.topics_in(), node.remap, name="ros2_bridge")
@@ -121,8 +147,7 @@ def run_process(
     started = wall_seconds()
     outcome = "stopped"
     try:
-        with _stop_on_signals():
-            outcome = _run(runtime, ros, clock, node, events)
+        outcome = _run(runtime, ros, clock, node, events, stop)
     finally:
         if isinstance(clock, FollowedClock):
             clock.stopping = True
@@ -151,26 +176,38 @@ def run_process(
 
 
 def _run(
-    runtime: Runtime, ros: RosContext, clock: Clock, node: NodeConfig, events: EventLog
+    runtime: Runtime,
+    ros: RosContext,
+    clock: Clock,
+    node: NodeConfig,
+    events: EventLog,
+    stop: StopRequest,
 ) -> str:
     if isinstance(clock, FollowedClock):
         if not clock.wait_first(node.wait_timeout_s):
+            if stop.requested:
+                return "stopped"
             raise ConfigError(
                 f"no /clock within {node.wait_timeout_s:g} s: is the robot process up?"
             )
     else:
         runtime.add(ClockPublisher(ros))
-        missing = ros.wait_for_nodes(list(node.wait_for), node.wait_timeout_s)
+        missing = ros.wait_for_nodes(
+            list(node.wait_for), node.wait_timeout_s, cancelled=lambda: stop.requested
+        )
         if missing:
             log.warning("starting without %s (not on the ROS graph)", ", ".join(missing))
+    if stop.requested:
+        return "stopped"
     runtime.start()
     try:
-        while True:
+        while not stop.requested:
             if node.duration_s is not None and runtime.clock.now() >= node.duration_s:
                 return "duration"
             if node.stop_after_acks is not None and len(events.acks) >= node.stop_after_acks:
                 runtime.spin_for(0.5)  # let the last events arrive
                 return "acknowledged"
             runtime.spin_for(0.25)
-    except (KeyboardInterrupt, ClockStoppedError):
-        return "stopped"
+    except ClockStoppedError:
+        pass
+    return "stopped"
