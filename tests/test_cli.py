@@ -143,3 +143,32 @@ def test_usage_errors_exit_2() -> None:
     assert "Traceback" not in proc.stderr
     proc = amiro("run", "hydration", "--unreachable", "--person-absent")
     assert proc.returncode == 2
+
+
+_BIG_REPORT = """
+import argparse, sys
+from amiro import cli
+from amiro.cli_support import emit_json
+
+def build_parser():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("-v", "--verbose", action="store_true")
+    parser.set_defaults(handler=lambda args: emit_json({"rows": list(range(200_000))}) or 0)
+    return parser
+
+cli.build_parser = build_parser
+sys.exit(cli.main([]))
+"""
+
+
+def test_a_reader_that_goes_away_is_not_an_error() -> None:
+    """`amiro ... --json | head`: no traceback, the shell's broken-pipe status."""
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _BIG_REPORT], stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
+    assert proc.stdout is not None and proc.stderr is not None
+    assert proc.stdout.read(20).startswith(b'{"rows": [0, 1')
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 141
+    assert "Traceback" not in err and "BrokenPipeError" not in err

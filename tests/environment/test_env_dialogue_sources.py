@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from datetime import date
 
 import pytest
@@ -9,6 +10,9 @@ import pytest
 from amiro.core.bus import Bus
 from amiro.core.clock import SimClock
 from amiro.core.config import parse
+from amiro.dialogue.actions import Actions
+from amiro.dialogue.phrases import phrase
+from amiro.dialogue.sources import offline_sources
 from amiro.environment.days import clock_date, resolve_day
 from amiro.environment.dialogue_calendar import ConfiguredCalendar
 from amiro.environment.dialogue_devices import BusDeviceControl
@@ -16,6 +20,7 @@ from amiro.environment.dialogue_health import StoreHealth
 from amiro.environment.health_store import HealthStore
 from amiro.environment.messages import DeviceCommand, HealthMeasurement
 from amiro.environment.reminders import RemindersConfig
+from amiro.environment.rules import HealthRule
 from amiro.environment.topics import DEVICE_COMMAND_TOPIC
 
 TODAY = date(2026, 7, 15)  # the simulated clock's first day
@@ -65,8 +70,58 @@ def test_no_answer_rather_than_a_wrong_one(health: StoreHealth) -> None:
     assert health.latest("ion", "heart_rate", "today") is None  # only yesterday's reading
     assert health.latest("maria", "heart_rate", "today") is None  # never measured
     assert health.latest("maria", "steps", "tomorrow") is None
-    assert health.latest("maria", "health_status", "today") is None  # not in the store
     assert health.latest("maria", "blood_pressure", "someday") is None
+
+
+def test_health_status_checks_the_day_against_the_users_rules(health: StoreHealth) -> None:
+    assert health.latest("maria", "health_status", "today") == {"status": "ok"}  # 124/78
+    assert health.latest("ion", "health_status", "today") is None  # no reading today
+    assert health.latest("ion", "health_status", "yesterday") == {"status": "ok"}  # 70 bpm
+    strict = StoreHealth(
+        health.store,
+        lambda: TODAY,
+        [
+            HealthRule(name="maria_bp", metric="blood_pressure", above=120, user="maria"),
+            HealthRule(name="ion_hr", metric="heart_rate", above=60, user="ion"),
+        ],
+    )
+    assert strict.latest("maria", "health_status", "today") == {
+        "status": "attention",
+        "metric": "blood_pressure",
+        "systolic": 124,
+        "diastolic": 78,
+    }
+    assert strict.latest("ion", "health_status", "yesterday") == {
+        "status": "attention",
+        "metric": "heart_rate",
+        "value": 70,
+    }
+
+
+def test_reference_ranges_cover_metrics_without_a_rule(health: StoreHealth) -> None:
+    health.store.add_many(
+        [HealthMeasurement("ion", "heart_rate", 112.0, "2026-07-15T10:00:00+00:00")]
+    )
+    only_bp = StoreHealth(
+        health.store, lambda: TODAY, [HealthRule(name="bp", metric="blood_pressure", above=170)]
+    )
+    assert only_bp.latest("ion", "health_status", "today") == {
+        "status": "attention",
+        "metric": "heart_rate",
+        "value": 112,
+    }
+
+
+def test_health_status_is_answered_in_the_listeners_language(health: StoreHealth) -> None:
+    rule = HealthRule(name="maria_bp", metric="blood_pressure", above=120)
+    sources = replace(offline_sources(), health=StoreHealth(health.store, lambda: TODAY, [rule]))
+    slots = {"health_entity": "health_status", "dateandtime_entity": "today"}
+    key, fields = Actions(sources).answer_health(slots, "maria", "fr")
+    assert key == "answer_attention_blood_pressure"
+    assert "124/78 mmHg" in phrase(key, "fr", fields)
+    calm = Actions(replace(offline_sources(), health=health)).answer_health(slots, "maria", "en")
+    assert calm[0] == "answer_health_status"
+    assert "within your usual range" in phrase(calm[0], "en", calm[1])
 
 
 CALENDAR = {

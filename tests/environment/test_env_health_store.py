@@ -22,8 +22,8 @@ def hm(metric: str, value: float, ts: str, value2: float | None = None) -> Healt
     return HealthMeasurement("maria", metric, value, ts, value2)
 
 
-def test_latest_yesterday_and_trend(tmp_path: Path) -> None:
-    store = HealthStore(f"sqlite:///{tmp_path / 'h.db'}")
+def test_latest_yesterday_and_trend(database_url: str) -> None:
+    store = HealthStore(database_url)
     store.add_many(
         [hm("steps", 1000.0, f"2026-07-14T{h:02d}:00:00+00:00") for h in range(8, 12)]
         + [hm("steps", 50.0, "2026-07-15T08:00:00+00:00")]
@@ -90,8 +90,10 @@ for i in range(1000):
 """
 
 
-def test_sigkill_in_the_middle_of_1000_writes_loses_no_acknowledged_record(tmp_path: Path) -> None:
-    url = f"sqlite:///{tmp_path / 'health.db'}"
+def test_sigkill_in_the_middle_of_1000_writes_loses_no_acknowledged_record(
+    database_url: str,
+) -> None:
+    url = database_url
     proc = subprocess.Popen([sys.executable, "-c", WRITER, url], stdout=subprocess.PIPE, text=True)
     assert proc.stdout is not None
     acked = -1

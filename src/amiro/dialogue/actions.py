@@ -35,7 +35,10 @@ class Actions:
         value = self.sources.health.latest(user, metric, day)
         if value is None:
             return "answer_no_data", {}
-        return f"answer_{metric}", {"day_phrase": day_phrase(day, lang), **value}
+        key = f"answer_{metric}"
+        if value.get("status") == "attention":  # health_status with a reading out of range
+            key = f"answer_attention_{value['metric']}"
+        return key, {"day_phrase": day_phrase(day, lang), **value}
 
     def answer_info(self, slots: dict[str, str], user: str, lang: str) -> Answer:
         return f"answer_info_{slots['info_entity']}", {}

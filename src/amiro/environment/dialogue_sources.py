@@ -20,7 +20,7 @@ def environment_sources(runtime: Runtime, environment: Environment, rooms: list[
     clock, cfg = runtime.clock, environment.config
     commands = runtime.bus.publisher(DEVICE_COMMAND_TOPIC, DeviceCommand)
     return Sources(
-        health=StoreHealth(environment.health, lambda: clock_date(clock)),
+        health=StoreHealth(environment.health, lambda: clock_date(clock), cfg.health_rules),
         calendar=ConfiguredCalendar(cfg.reminders, clock),
         weather=OfflineWeather(),
         devices=BusDeviceControl(commands, cfg.home_id, rooms),
