@@ -13,7 +13,7 @@ import logging
 import os
 import sys
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NoReturn
 
 from amiro import __version__
 from amiro.cli_support import Handler
@@ -89,5 +89,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 141
 
 
+def exit_process(code: int) -> NoReturn:
+    """Exit with ``code``.  A process that used rclpy skips the interpreter's final
+    teardown (its reports are written by then): garbage-collecting rclpy's C objects at
+    shutdown can hang, and a deployment's process then has to be killed."""
+    if "rclpy" in sys.modules:
+        logging.shutdown()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)
+
+
+def run() -> NoReturn:
+    """The ``amiro`` console command."""
+    exit_process(main())
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run()

@@ -131,11 +131,13 @@ def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Se
     from amiro.web.app import create_app
     from amiro.web.chat import DialogueChat
     from amiro.web.gateway import GatewayNode
+    from amiro.web.robot import SystemRobot
 
     system = build_system(cfg.system, clock)
-    gateway = system.runtime.add(GatewayNode(system))
+    robot = SystemRobot(system)
+    gateway = system.runtime.add(GatewayNode(robot, system.environment.devices))
     chat = chat or DialogueChat(system.dialogue.manager)
-    backend = Backend(system, system.environment, gateway, chat)
+    backend = Backend(robot, system.environment, system.sensors, gateway, chat)
     app = create_app(backend, make_authenticator(cfg.web), cfg.web)
     return Served(system, gateway, app)
 
@@ -183,7 +185,7 @@ def register(sub: Subcommands) -> None:
 
 
 def _serve(args: argparse.Namespace) -> int:
-    from amiro.core.clock import SimClock
+    from amiro.core.clock import SimClock, WallClock
     from amiro.core.config import ConfigError
     from amiro.web.server import WebServer
 
@@ -192,11 +194,16 @@ def _serve(args: argparse.Namespace) -> int:
     if args.port is not None and not 0 <= args.port <= 65535:
         raise ConfigError(f"--port must be in 0..65535, got {args.port}")
     cfg = apply_flags(load_serve_config(args.config, args.seed), args)
-    served = assemble(cfg, SimClock(speed=args.speed))
+    real_robot = cfg.system.robot.adapter != "sim"
+    if real_robot and args.speed != 1.0:
+        raise ConfigError(f"--speed {args.speed:g}: a real robot runs in real time")
+    clock: Clock = WallClock() if real_robot else SimClock(speed=args.speed)
+    served = assemble(cfg, clock)
     server = WebServer(served.app, cfg.web.host, cfg.web.port)
     try:
         server.start()
     except RuntimeError as exc:
+        served.stop()  # close the robot's connections
         raise ConfigError(f"{cfg.web.host}:{cfg.web.port}: {exc}") from None
     stopping = threading.Event()
 

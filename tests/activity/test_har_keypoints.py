@@ -62,6 +62,6 @@ def test_blazepose_maps_sides_hands_and_spine() -> None:
 
 def test_bad_formats_and_shapes_are_config_errors() -> None:
     with pytest.raises(ConfigError, match="unknown keypoint format"):
-        to_ntu(np.zeros((1, 25, 3)), "coco17")
+        to_ntu(np.zeros((1, 25, 3)), "h36m17")
     with pytest.raises(ConfigError, match=r"\(frames, 33, 3\)"):
         to_ntu(np.zeros((1, 25, 3)), "mediapipe_blazepose33")

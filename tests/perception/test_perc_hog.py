@@ -16,29 +16,9 @@ import pytest
 
 from amiro.perception.hog import HogPeopleDetector
 from amiro.perception.ports import Frame
+from amiro.perception.synthetic_scene import silhouette
 
 Rgb = npt.NDArray[np.uint8]
-
-
-def silhouette(image: Rgb, cx: int, top: int, height: int) -> None:
-    """Draw an upright person ``height`` pixels tall, head top at ``top``, in place."""
-    s = height / 8.0  # a head is an eighth of a body
-
-    def p(dx: float, dy: float) -> list[int]:
-        return [round(cx + dx * s), round(top + dy * s)]
-
-    colour = (40, 40, 40)
-    cv2.circle(image, p(0, 0.5), round(0.5 * s), colour, -1)
-    parts = [
-        [p(-0.25, 0.9), p(0.25, 0.9), p(0.25, 1.2), p(-0.25, 1.2)],  # neck
-        [p(-1.0, 1.2), p(1.0, 1.2), p(0.8, 4.2), p(-0.8, 4.2)],  # torso
-    ]
-    for side in (-1, 1):
-        parts.append([p(side, 1.3), p(1.4 * side, 1.5), p(1.3 * side, 4.3), p(0.95 * side, 4.2)])
-        parts.append(
-            [p(0.05 * side, 4.2), p(0.8 * side, 4.2), p(0.75 * side, 8), p(0.15 * side, 8)]
-        )
-    cv2.fillPoly(image, [np.array(part, dtype=np.int32) for part in parts], colour)
 
 
 def scene(*people: tuple[int, int, int]) -> Rgb:

@@ -17,7 +17,7 @@ import pytest
 from onnx import TensorProto, helper, numpy_helper
 
 from amiro.core.config import ConfigError
-from amiro.perception.onnx_yolo import YoloOnnxDetector, coco_labels
+from amiro.perception.onnx_yolo import YoloOnnxDetector, coco_labels, letterbox
 from amiro.perception.ports import Frame
 
 PERSON, BOTTLE, CUP, COUCH = 0, 39, 41, 57
@@ -82,7 +82,7 @@ def test_boxes_labels_scores_and_suppression(detector: YoloOnnxDetector) -> None
 def test_letterbox_keeps_the_aspect_and_pads_grey(detector: YoloOnnxDetector) -> None:
     red = np.zeros((480, 640, 3), dtype=np.uint8)
     red[..., 0] = 255
-    blob, scale, dx, dy = detector._letterbox(red)
+    blob, scale, dx, dy = letterbox(red, detector.size)
     assert blob.shape == (1, 3, 320, 320) and (scale, dx, dy) == (0.5, 0.0, 40.0)
     assert blob[0, :, :40].max() == blob[0, :, 280:].min() == pytest.approx(114 / 255)
     assert blob[0, 0, 40:280].min() == 1.0 and blob[0, 1:, 40:280].max() == 0.0

@@ -2,20 +2,19 @@
 
 from __future__ import annotations
 
-import itertools
-import os
 from collections.abc import Iterator
 
 import pytest
 import qi
 from naoqi_fakes import FakeMotion, FakePosture, FakeTablet, FakeTTS, Recorder
 
-_domains = itertools.count(30 + os.getpid() % 25)
+from amiro.ros2.env import claimed_domain
 
 
 @pytest.fixture
-def robot_domain() -> int:
-    return next(_domains)
+def robot_domain() -> Iterator[int]:
+    with claimed_domain() as domain:
+        yield domain
 
 
 @pytest.fixture

@@ -1,15 +1,15 @@
-"""Each test talks ROS 2 on loopback in a domain of its own."""
+"""Each test talks ROS 2 on loopback in a domain of its own (claimed machine-wide)."""
 
 from __future__ import annotations
 
-import itertools
-import os
+from collections.abc import Iterator
 
 import pytest
 
-_domains = itertools.count(60 + os.getpid() % 30)
+from amiro.ros2.env import claimed_domain
 
 
 @pytest.fixture
-def domain_id() -> int:
-    return next(_domains)
+def domain_id() -> Iterator[int]:
+    with claimed_domain() as domain:
+        yield domain

@@ -10,8 +10,24 @@ from pydantic import Field
 from amiro.core.config import Section
 
 
+class PoseSection(Section):
+    """The ``camera-onnx`` backend's 2D pose estimator (see docs/activity.md for the layout)."""
+
+    model: Path | None = Field(default=None, description="a YOLO-pose-layout ONNX model")
+    keypoints: Literal["coco17", "openpose_body25", "mediapipe_blazepose33"] = Field(
+        default="coco17", description="the model's keypoint order"
+    )
+    min_score: float = Field(default=0.5, ge=0.0, le=1.0, description="person score kept")
+    min_keypoint: float = Field(default=0.3, ge=0.0, le=1.0, description="keypoint confidence")
+    nms_iou: float = Field(default=0.45, gt=0.0, le=1.0)
+
+
 class ActivityConfig(Section):
-    backend: Literal["onnx", "oracle"] = "onnx"
+    backend: Literal["onnx", "oracle", "camera-onnx"] = Field(
+        default="onnx",
+        description="onnx: the model on simulated skeletons; oracle: ground truth; "
+        "camera-onnx: the model on skeletons a pose model finds in the robot's camera",
+    )
     model: Path | None = Field(default=None, description="ONNX model; default: the shipped one")
     window_frames: int = Field(default=30, ge=2, le=300, description="frames per decision")
     min_confidence: float = Field(default=0.5, ge=0.0, le=1.0)
@@ -21,3 +37,4 @@ class ActivityConfig(Section):
     accuracy: float = Field(default=0.95, ge=0.0, le=1.0, description="oracle backend only")
     fall_detection: bool = Field(default=True, description="watch everyone in view for falls")
     fall_period_s: float = Field(default=0.5, gt=0.0, description="s between fall checks")
+    pose: PoseSection = Field(default_factory=PoseSection)

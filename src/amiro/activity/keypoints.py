@@ -1,4 +1,4 @@
-"""2D pose keypoints (OpenPose BODY_25, MediaPipe BlazePose 33) in the NTU-25 joint layout.
+"""2D pose keypoints (OpenPose BODY_25, MediaPipe BlazePose 33, COCO 17) in the NTU-25 layout.
 
 The robot has no Kinect: as in the paper (section 3.5), a 2D pose estimator on the RGB
 image gives keypoints, which are renamed and combined into the 25 Kinect v2 joints before
@@ -29,6 +29,12 @@ BLAZEPOSE_33: tuple[str, ...] = (
     "right_pinky", "left_index", "right_index", "left_thumb", "right_thumb", "left_hip",
     "right_hip", "left_knee", "right_knee", "left_ankle", "right_ankle", "left_heel",
     "right_heel", "left_foot_index", "right_foot_index",
+)  # fmt: skip
+
+COCO_17: tuple[str, ...] = (
+    "nose", "left_eye", "right_eye", "left_ear", "right_ear", "left_shoulder",
+    "right_shoulder", "left_elbow", "right_elbow", "left_wrist", "right_wrist", "left_hip",
+    "right_hip", "left_knee", "right_knee", "left_ankle", "right_ankle",
 )  # fmt: skip
 
 # Kinect's SpineMid sits 0.28 m up the 0.50 m spine, its Neck 0.07 m up the 0.20 m from the
@@ -112,9 +118,46 @@ def _blazepose() -> Recipes:
     return recipes
 
 
+def _coco() -> Recipes:
+    """COCO's 17 keypoints (YOLO-pose, RTMPose, ViTPose...): no feet, so FootLeft and
+    FootRight stay unseen; hands extrapolated along the forearm as for BODY_25."""
+    k = {name: i for i, name in enumerate(COCO_17)}
+    hips = _mean(k["left_hip"], k["right_hip"])
+    shoulders = _mean(k["left_shoulder"], k["right_shoulder"])
+    head = (
+        _mean(k["left_ear"], k["right_ear"]),
+        _mean(k["left_eye"], k["right_eye"]),
+        _mean(k["nose"]),
+    )
+    recipes: Recipes = {
+        "SpineBase": (hips,),
+        "SpineMid": (_between(hips, shoulders, _SPINE_MID),),
+        "SpineShoulder": (shoulders,),
+        "Head": head,
+        "Neck": tuple(_between(shoulders, h, _NECK) for h in head),
+    }
+    for side in ("Left", "Right"):
+        s = side.lower() + "_"
+        elbow, wrist = _mean(k[s + "elbow"]), _mean(k[s + "wrist"])
+        hand = _between(elbow, wrist, 1.0 + _HAND)
+        recipes |= {
+            "Shoulder" + side: (_mean(k[s + "shoulder"]),),
+            "Elbow" + side: (elbow,),
+            "Wrist" + side: (wrist,),
+            "Hand" + side: (hand,),
+            "HandTip" + side: (_between(elbow, wrist, 1.0 + _TIP),),
+            "Thumb" + side: (hand,),
+            "Hip" + side: (_mean(k[s + "hip"]),),
+            "Knee" + side: (_mean(k[s + "knee"]),),
+            "Ankle" + side: (_mean(k[s + "ankle"]),),
+        }
+    return recipes
+
+
 FORMATS: dict[str, tuple[tuple[str, ...], Recipes]] = {
     "openpose_body25": (BODY_25, _openpose()),
     "mediapipe_blazepose33": (BLAZEPOSE_33, _blazepose()),
+    "coco17": (COCO_17, _coco()),
 }
 
 

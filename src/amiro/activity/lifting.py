@@ -120,3 +120,13 @@ def resample(frames: FloatArray, stamps: FloatArray, fps: float) -> FloatArray:
     pick = nearest_in_time(ticks, np.asarray(stamps, dtype=np.float64), np.inf)
     out: FloatArray = frames[pick]
     return out
+
+
+def level(joints: FloatArray, pitch: float) -> FloatArray:
+    """Kinect-axes joints (x left, y up, z forward) of a camera pitched down by ``pitch``
+    in the levelled frame (y straight up), the view the activity model was trained on;
+    ``-pitch`` turns levelled joints into what the pitched camera sees."""
+    cp, sp = np.cos(pitch), np.sin(pitch)
+    y, z = joints[..., 1], joints[..., 2]
+    out: FloatArray = np.stack([joints[..., 0], y * cp - z * sp, z * cp + y * sp], axis=-1)
+    return out

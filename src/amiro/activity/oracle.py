@@ -10,13 +10,13 @@ import numpy as np
 
 from amiro.activity.ports import ActivityReading
 from amiro.sim.residents import ACTIVITIES
-from amiro.sim.simulator import Simulation
+from amiro.sim.sensing import HeadCamera
 
 
 class OracleActivityRecognizer:
     box_range: tuple[float, float] | None = None  # the oracle sees as well from anywhere
 
-    def __init__(self, sim: Simulation, rng: np.random.Generator, accuracy: float = 0.95) -> None:
+    def __init__(self, sim: HeadCamera, rng: np.random.Generator, accuracy: float = 0.95) -> None:
         self.sim = sim
         self.rng = rng
         self.accuracy = accuracy

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from amiro.activity.keypoints import BODY_25, to_ntu
-from amiro.activity.lifting import lift_sequence
+from amiro.activity.keypoints import BODY_25, COCO_17, to_ntu
+from amiro.activity.lifting import level, lift_sequence
 from amiro.activity.skeleton import FloatArray, J
 from amiro.core.messages import CameraInfo
 
@@ -32,6 +32,13 @@ BODY_25_SOURCE: dict[str, str] = {
        for toe in ("BigToe", "SmallToe", "Heel")},
 }  # fmt: skip
 _BODY_25_JOINTS = [J[BODY_25_SOURCE[name]] for name in BODY_25]
+# The NTU joint each COCO-17 keypoint sits on ("left_wrist" on WristLeft; the face on Head).
+_COCO_17_JOINTS = [
+    J["Head"] if name.endswith(("nose", "eye", "ear"))
+    else J["".join(part.title() for part in reversed(name.split("_")))]
+    for name in COCO_17
+]  # fmt: skip
+SOURCES = {"openpose_body25": _BODY_25_JOINTS, "coco17": _COCO_17_JOINTS}
 
 
 def project(joints: FloatArray, info: CameraInfo) -> FloatArray:
@@ -43,10 +50,12 @@ def project(joints: FloatArray, info: CameraInfo) -> FloatArray:
     return out
 
 
-def body25_keypoints(pixels: FloatArray, width: int, height: int) -> FloatArray:
-    """BODY_25 keypoints ``(frames, 25, 3)`` (u, v, confidence) on NTU joint pixels; a
-    joint outside the image, or unseen, gets confidence 0."""
-    uv = pixels[:, _BODY_25_JOINTS]
+def body25_keypoints(
+    pixels: FloatArray, width: int, height: int, fmt: str = "openpose_body25"
+) -> FloatArray:
+    """Keypoints ``(frames, K, 3)`` (u, v, confidence) of ``fmt`` (BODY_25, or ``coco17``)
+    on NTU joint pixels; a joint outside the image, or unseen, gets confidence 0."""
+    uv = pixels[:, SOURCES[fmt]]
     inside = (uv[..., 0] >= 0) & (uv[..., 0] < width) & (uv[..., 1] >= 0) & (uv[..., 1] < height)
     confidence = (inside & np.isfinite(uv).all(axis=-1)).astype(np.float64)
     out: FloatArray = np.concatenate([np.nan_to_num(uv)[..., :2], confidence[..., None]], axis=-1)
@@ -69,11 +78,14 @@ def depth_image(
     return depth
 
 
-def through_pose_estimator(frames: FloatArray, info: CameraInfo) -> FloatArray:
-    """Skeletons ``(frames, 25, 3)`` as the robot would rebuild them: BODY_25 keypoints,
-    mapped to NTU-25, lifted with the depth image of the same instant."""
-    pixels = project(frames, info)
-    keypoints = body25_keypoints(pixels, info.width, info.height)
+def through_pose_estimator(
+    frames: FloatArray, info: CameraInfo, fmt: str = "openpose_body25", pitch: float = 0.0
+) -> FloatArray:
+    """Skeletons ``(frames, 25, 3)`` as the robot would rebuild them with its head pitched
+    down by ``pitch``: ``fmt`` keypoints (BODY_25 or COCO-17), mapped to NTU-25, lifted with
+    the depth image of the same instant, levelled again."""
+    seen = level(frames, -pitch)
+    keypoints = body25_keypoints(project(seen, info), info.width, info.height, fmt)
     stamps = np.arange(len(frames), dtype=np.float64)
-    depths = [depth_image(f, info) for f in frames]
-    return lift_sequence(to_ntu(keypoints, "openpose_body25"), stamps, depths, stamps, info)
+    depths = [depth_image(f, info) for f in seen]
+    return level(lift_sequence(to_ntu(keypoints, fmt), stamps, depths, stamps, info), pitch)

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 from amiro.core.lazy import lazy_getattr
 
 if TYPE_CHECKING:
+    from amiro.behavior.checkpoint import Checkpoint, CheckpointError, FinishedTask
     from amiro.behavior.engine import (
         EVENTS_TOPIC,
         BehaviorEngine,
@@ -36,16 +37,19 @@ if TYPE_CHECKING:
         task_types,
     )
 
-_SUBMODULES = ("engine", "graph", "handlers", "loader", "task")
+_SUBMODULES = ("engine", "graph", "handlers", "loader", "task", "checkpoint")
 
 __all__ = [
     "COMPLETED",
     "EVENTS_TOPIC",
     "FAILED",
     "BehaviorEngine",
+    "Checkpoint",
+    "CheckpointError",
     "Edge",
     "End",
     "EngineConfig",
+    "FinishedTask",
     "GraphRun",
     "HandlerError",
     "HandlerFactory",

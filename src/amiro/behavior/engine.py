@@ -5,7 +5,9 @@ the head of the queue belongs to a behaviour of strictly higher priority, in whi
 successor is re-inserted and waits until that behaviour has ended.  Equal priorities run in
 arrival order.  Extension: a task type that declares ``cancellable = True`` is cancelled
 within one control tick when a strictly more urgent behaviour waits (``preemption`` config),
-and its behaviour later resumes from that task, started afresh.
+and its behaviour later resumes from that task, started afresh.  Extension: a behaviour
+submitted with a :class:`~amiro.behavior.checkpoint.Checkpoint` (taken by another engine,
+e.g. before its process died) starts at the checkpoint's task with its blackboard restored.
 """
 
 from __future__ import annotations
@@ -17,6 +19,13 @@ from typing import Any
 
 from pydantic import Field
 
+from amiro.behavior.checkpoint import (
+    EDGE_RESULTS,
+    Checkpoint,
+    CheckpointError,
+    FinishedTask,
+    portable,
+)
 from amiro.behavior.graph import End, TaskGraph, task_type_name
 from amiro.behavior.task import Task, TaskContext, TaskError, TaskRecord, TaskStatus
 from amiro.core.config import Section
@@ -32,6 +41,9 @@ _MAX_STARTS_PER_TICK = 64
 class EngineConfig(Section):
     tick_s: float = Field(0.05, gt=0)
     preemption: bool = True
+    resume_max_age_s: float = Field(
+        600.0, gt=0, description="an older checkpoint is stale: its behaviour runs from the entry"
+    )
 
 
 class RunStatus(enum.StrEnum):
@@ -124,6 +136,7 @@ class BehaviorEngine(Node):
         self._active: _Active | None = None
         self._seq = itertools.count(1)
         self._per_name: dict[str, int] = {}
+        self.resume_failures = 0
 
     # --- lifecycle ------------------------------------------------------------------------
     def on_start(self) -> None:
@@ -131,8 +144,10 @@ class BehaviorEngine(Node):
         self.create_timer(self.config.tick_s, self.tick)
 
     # --- public API -----------------------------------------------------------------------
-    def submit(self, graph: TaskGraph) -> GraphRun:
-        """Queue a behaviour's entry task; raises TaskError for an invalid graph."""
+    def submit(self, graph: TaskGraph, resume: Checkpoint | None = None) -> GraphRun:
+        """Queue a behaviour's entry task, or ``resume``'s task with its blackboard restored
+        (a checkpoint that does not fit the graph is logged, counted and ignored); raises
+        TaskError for an invalid graph."""
         graph.validate()
         count = self._per_name.get(graph.name, 0) + 1
         self._per_name[graph.name] = count
@@ -144,7 +159,8 @@ class BehaviorEngine(Node):
             submitted_s=self.now(),
         )
         self.runs[run.id] = run
-        self._queue.append(_Pending(run, graph.entry))
+        pending = _Pending(run, graph.entry)
+        self._queue.append(pending)
         self._emit_event(
             "graph_submitted",
             run.id,
@@ -156,7 +172,28 @@ class BehaviorEngine(Node):
         )
         for warning in graph.warnings():
             self.log.warning("%s", warning)
+        if resume is not None:
+            pending.task_id = self._resume(run, resume)
         return run
+
+    def checkpoint(self, run_id: str) -> Checkpoint | None:
+        """Where a run stands (the task running or next to run); None once it has ended."""
+        run = self.runs.get(run_id)
+        if run is None or run.done:
+            return None
+        if self._active is not None and self._active.run is run:
+            task: str | None = self._active.task_id
+        else:
+            task = next((p.task_id for p in self._queue if p.run is run), None)
+        if task is None:
+            return None
+        blackboard, omitted = portable(run.blackboard)
+        if omitted:
+            self.log.warning("checkpoint of %s leaves out %s", run.id, ", ".join(omitted))
+        finished = tuple(
+            FinishedTask(r.task_id, r.result) for r in run.records if r.result in EDGE_RESULTS
+        )
+        return Checkpoint(run.id, run.name, task, finished, blackboard, self.now(), omitted)
 
     def cancel_graph(self, run_id: str) -> bool:
         """Drop a behaviour; its running task is cancelled if cancellable, else it ends first.
@@ -217,6 +254,29 @@ class BehaviorEngine(Node):
             "runs": [r.to_dict() for r in self.runs.values()],
             "events": [e.to_dict() for e in self.events],
         }
+
+    def _resume(self, run: GraphRun, checkpoint: Checkpoint) -> str:
+        """The task a new run starts at: the checkpoint's (blackboard restored) or the entry."""
+        age = self.now() - checkpoint.stamp
+        try:
+            if age > self.config.resume_max_age_s:
+                raise CheckpointError(f"checkpoint is stale ({age:.1f} s old)")
+            task = checkpoint.resume_point(run.graph)
+        except CheckpointError as exc:
+            self.resume_failures += 1
+            self.log.warning("%s runs from its entry: %s", run.id, exc)
+            self._emit_event("resume_rejected", run.id, run.graph.entry, reason=str(exc))
+            return run.graph.entry
+        run.blackboard.update(checkpoint.blackboard)
+        self._emit_event(
+            "behavior_resumed",
+            run.id,
+            task,
+            checkpoint=checkpoint.run,
+            finished=[f.task for f in checkpoint.finished],
+            age_s=round(age, 3),
+        )
+        return task
 
     # --- control loop ---------------------------------------------------------------------
     def tick(self) -> None:

@@ -315,6 +315,9 @@ class Notification:
     kind: str
     priority: int
     reason: str = ""
+    # Where the behaviour answering it stood (amiro.behavior.checkpoint's JSON form): set
+    # by the cloud's ledger when it re-sends the notification to a restarted edge.
+    checkpoint: dict[str, Any] | None = field(default=None, compare=False, hash=False)
 
 
 @dataclass(frozen=True, slots=True)

@@ -9,6 +9,13 @@ from typing import Protocol
 from amiro.core.registry import register
 from amiro.dialogue.audio import Audio
 
+# pocketsphinx grammar confidences are 0.5 at the limits tuned in asr_confidence.  Replies
+# to the robot's yes/no questions often run past the answers grammar ("sure, thank you, I'm
+# drinking now"), which reads as unexplained speech, so Listen rejects nothing by default
+# (measured trade-off in docs/dialogue.md).
+DEFAULT_REJECT_BELOW = 0.5
+DEFAULT_LISTEN_REJECT_BELOW = 0.0
+
 register("asr", "pocketsphinx", "amiro.dialogue.asr_pocketsphinx:PocketsphinxRecognizer")
 register("asr", "vosk", "amiro.dialogue.asr_extras:VoskRecognizer")
 register("asr", "google", "amiro.dialogue.asr_extras:GoogleRecognizer")
@@ -16,9 +23,34 @@ register("asr", "google", "amiro.dialogue.asr_extras:GoogleRecognizer")
 
 @dataclass(frozen=True)
 class Transcript:
-    text: str
+    text: str  # what was understood: "" for silence or a rejected guess
     confidence: float = 1.0
+    rejected: str = ""  # the best guess when its confidence was too low, for logs and reports
+
+    @property
+    def guess(self) -> str:
+        """The recogniser's best guess, accepted or not."""
+        return self.text or self.rejected
 
 
 class Recognizer(Protocol):
     def transcribe(self, audio: Audio) -> Transcript: ...
+
+
+def gate(transcript: Transcript, reject_below: float) -> Transcript:
+    """The transcript, or an empty one carrying the guess when its confidence is below
+    ``reject_below``: the robot must not act on speech it did not understand."""
+    if transcript.text and transcript.confidence < reject_below:
+        return Transcript("", transcript.confidence, rejected=transcript.text)
+    return transcript
+
+
+class ConfidenceGate:
+    """Any recogniser with :func:`gate` applied to its results."""
+
+    def __init__(self, recognizer: Recognizer, reject_below: float) -> None:
+        self.recognizer = recognizer
+        self.reject_below = reject_below
+
+    def transcribe(self, audio: Audio) -> Transcript:
+        return gate(self.recognizer.transcribe(audio), self.reject_below)

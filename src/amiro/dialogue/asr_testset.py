@@ -1,6 +1,6 @@
 """Speech test sets for ``amiro asr evaluate``: commands spoken by a synthesizer (espeak-ng),
-clean or with white noise at a chosen SNR from a seeded generator, so the same files come
-out on every run and machine."""
+clean or with white noise at a chosen SNR, and noise-only clips for the rejection test, all
+from a seeded generator, so the same files come out on every run and machine."""
 
 from __future__ import annotations
 
@@ -11,10 +11,12 @@ from pathlib import Path
 import numpy as np
 
 from amiro.core.config import ConfigError
-from amiro.dialogue.audio import add_noise_at_snr, write_wav
+from amiro.dialogue.audio import ASR_RATE, Audio, add_noise_at_snr, write_wav
 from amiro.dialogue.tts import Synthesizer
 
-SHIPPED_COMMANDS = Path(str(resources.files("amiro").joinpath("data/dialogue/grammar/asr_en.txt")))
+_GRAMMAR_DIR = resources.files("amiro").joinpath("data/dialogue/grammar")
+SHIPPED_COMMANDS = Path(str(_GRAMMAR_DIR.joinpath("asr_en.txt")))
+SHIPPED_OUT_OF_GRAMMAR = Path(str(_GRAMMAR_DIR.joinpath("asr_en_oog.txt")))
 
 
 def read_commands(path: Path) -> list[str]:
@@ -48,4 +50,23 @@ def write_test_set(
             audio = add_noise_at_snr(audio, rng, snr_db)
         written.append(out / file_name(command))
         write_wav(written[-1], audio)
+    return written
+
+
+def noise_clip(rng: np.random.Generator) -> Audio:
+    """1-3 s of white or brown noise, from about -60 to -20 dBFS RMS: a fan, rustling, traffic,
+    which the recogniser must not take for a command."""
+    samples = int(ASR_RATE * rng.uniform(1.0, 3.0))
+    x = rng.normal(0.0, 1.0, samples)
+    if rng.random() < 0.5:
+        x = np.cumsum(x)
+        x -= np.linspace(x[0], x[-1], samples)  # no drift: the level stays where it is set
+    x *= 10.0 ** rng.uniform(1.5, 3.5) / max(float(np.std(x)), 1e-9)
+    return Audio(np.clip(np.round(x), -32768, 32767).astype(np.int16), ASR_RATE)
+
+
+def write_noise_clips(count: int, out: Path, rng: np.random.Generator) -> list[Path]:
+    written = [out / f"noise_{i:02d}.wav" for i in range(count)]
+    for path in written:
+        write_wav(path, noise_clip(rng))
     return written

@@ -26,15 +26,16 @@ def _typed() -> Iterator[str]:
 
 
 def _spoken(lang: str) -> Iterator[str]:
-    from amiro.dialogue.asr_pocketsphinx import PocketsphinxRecognizer
     from amiro.dialogue.audio import ASR_RATE, Audio
+    from amiro.dialogue.config import DialogueConfig
+    from amiro.dialogue.stack import make_recognizer
     from amiro.dialogue.vad import UtteranceDetector
 
     try:
         import sounddevice  # type: ignore[import-untyped,import-not-found,unused-ignore]
     except (ImportError, OSError):
         raise ConfigError("chat --voice: needs the sounddevice package and PortAudio") from None
-    recognizer = PocketsphinxRecognizer("nlu", lang)
+    recognizer = make_recognizer(DialogueConfig(), lang=lang)  # rejects out-of-grammar speech
     detector = UtteranceDetector()
     samples_per_frame = detector.frame_bytes // 2
     with sounddevice.RawInputStream(samplerate=ASR_RATE, channels=1, dtype="int16") as stream:
@@ -43,9 +44,10 @@ def _spoken(lang: str) -> Iterator[str]:
             data, _ = stream.read(samples_per_frame)
             utterance: Audio | None = detector.feed(bytes(data))
             if utterance is not None:
-                text = recognizer.transcribe(utterance).text
-                print(f"{PROMPT}{text}")
-                yield text
+                heard = recognizer.transcribe(utterance)
+                shown = heard.text or f"(not understood: {heard.rejected or '...'})"
+                print(f"{PROMPT}{shown}")
+                yield heard.text
 
 
 def run_chat(lang: str, voice: bool) -> int:
@@ -57,7 +59,7 @@ def run_chat(lang: str, voice: bool) -> int:
     )
     try:
         for text in _spoken(lang) if voice else _typed():
-            if not text.strip():
+            if not text.strip() and not voice:  # spoken but rejected: "did not understand"
                 continue
             answer = manager.handle(text, lang, "user")
             shown = " [display]" if answer.display and not answer.say else ""

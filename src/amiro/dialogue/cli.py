@@ -33,6 +33,17 @@ def register(sub: Subcommands) -> None:
     aev.add_argument("--backend", default="pocketsphinx", help="pocketsphinx, vosk or google")
     aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
     aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
+    aev.add_argument(
+        "--reject-below",
+        type=float,
+        help="reject results with a lower confidence (default: the config's, 0.5; answers 0)",
+    )
+    aev.add_argument(
+        "--out-of-grammar",
+        type=Path,
+        metavar="DIR",
+        help="WAV files that must be rejected: adds false acceptance/rejection and a ROC table",
+    )
     syn = add_command(
         asr, "synthesize", _synthesize, help="speak commands into WAV files (espeak-ng, noise)"
     )
@@ -40,6 +51,9 @@ def register(sub: Subcommands) -> None:
     syn.add_argument("out", type=Path, help="directory for the WAV files")
     syn.add_argument("--snr", type=float, help="add white noise at this SNR in dB")
     syn.add_argument("--seed", type=int, default=0, help="noise seed (default 0)")
+    syn.add_argument(
+        "--noise-clips", type=int, default=0, metavar="N", help="also write N noise-only clips"
+    )
 
     chat = add_command(
         sub, "chat", _chat, help="talk to the dialogue module in a terminal", with_json=False
@@ -80,32 +94,59 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
 
 def _evaluate_asr(args: argparse.Namespace) -> int:
     from amiro.core.config import ConfigError
-    from amiro.dialogue.asr_eval import evaluate_asr
+    from amiro.dialogue.asr_eval import (
+        accuracy_report,
+        describe_rates,
+        rejection_report,
+        transcribe_dir,
+    )
     from amiro.dialogue.config import AsrConfig, DialogueConfig
     from amiro.dialogue.phrases import check_language
     from amiro.dialogue.stack import make_recognizer
+    from amiro.dialogue.understanding import Nlu
 
     if args.backend not in ASR_BACKENDS:
         raise ConfigError(f"unknown asr backend '{args.backend}' ({', '.join(ASR_BACKENDS)})")
-    asr = AsrConfig(backend=args.backend, grammar="nlu", vosk_model=args.vosk_model)
-    recognizer = make_recognizer(DialogueConfig(asr=asr), args.grammar, check_language(args.lang))
-    report = evaluate_asr(args.dir, recognizer)
+    defaults = AsrConfig()
+    reject_below = args.reject_below
+    if reject_below is None:
+        answers = args.grammar == "answers"
+        reject_below = defaults.listen_reject_below if answers else defaults.reject_below
+    if not 0.0 <= reject_below <= 1.0:
+        raise ConfigError(f"--reject-below {reject_below}: must be between 0 and 1")
+    # every result kept here: the report applies the thresholds itself
+    asr = AsrConfig(backend=args.backend, vosk_model=args.vosk_model, reject_below=0.0)
+    lang = check_language(args.lang)
+    recognizer = make_recognizer(DialogueConfig(asr=asr), args.grammar, lang)
+    heard = transcribe_dir(args.dir, recognizer)
+    report = accuracy_report(heard, reject_below)
     text = (
         f"{report['files']} files: WER {100 * report['wer']:.1f}%, sentence accuracy "
-        f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}"
+        f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}, "
+        f"{100 * report['rejected']:.1f}% rejected below {reject_below:g}"
     )
+    if args.out_of_grammar is not None:
+        oog = transcribe_dir(args.out_of_grammar, recognizer)
+        nlu = Nlu()
+        rejection = rejection_report(heard, oog, reject_below, lambda t: nlu.parse(t, lang).intent)
+        report.update(rejection)
+        text += "".join(f"\n{describe_rates(r)}" for r in rejection["roc"])
     return emit_report(args, report, text)
 
 
 def _synthesize(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from amiro.dialogue.asr_testset import read_commands, write_test_set
+    from amiro.core.config import ConfigError
+    from amiro.dialogue.asr_testset import read_commands, write_noise_clips, write_test_set
     from amiro.dialogue.tts import EspeakSynthesizer
 
+    if args.noise_clips < 0:
+        raise ConfigError(f"--noise-clips {args.noise_clips}: must be 0 or more")
     commands = read_commands(args.file)
     rng = np.random.default_rng(args.seed)
     written = write_test_set(commands, args.out, EspeakSynthesizer(), rng, args.snr)
+    written += write_noise_clips(args.noise_clips, args.out, rng)
     report = {"files": len(written), "dir": str(args.out), "snr_db": args.snr}
     noise = "clean" if args.snr is None else f"white noise at {args.snr:g} dB SNR"
     return emit_report(args, report, f"{len(written)} WAV files in {args.out} ({noise})")

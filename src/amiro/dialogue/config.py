@@ -8,6 +8,7 @@ from typing import Literal
 from pydantic import Field
 
 from amiro.core.config import Section
+from amiro.dialogue.asr import DEFAULT_LISTEN_REJECT_BELOW, DEFAULT_REJECT_BELOW
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD
 from amiro.dialogue.profiles import SpeakerProfile
 
@@ -26,6 +27,18 @@ class AsrConfig(Section):
     grammar: Literal["nlu", "answers", "none"] = Field(
         default="nlu",
         description="pocketsphinx search: JSGF from the NLU data, yes/no/later, or LM",
+    )
+    reject_below: float = Field(
+        default=DEFAULT_REJECT_BELOW,
+        ge=0.0,
+        le=1.0,
+        description="commands with a lower confidence are rejected (heard as not understood)",
+    )
+    listen_reject_below: float = Field(
+        default=DEFAULT_LISTEN_REJECT_BELOW,
+        ge=0.0,
+        le=1.0,
+        description="the same for answers to the robot's questions (Listen, answers grammar)",
     )
     vosk_model: Path | None = None
     sim_audio: bool = Field(

@@ -8,7 +8,7 @@ from amiro.core.registry import create
 from amiro.core.runtime import Runtime
 from amiro.dialogue import asr as _asr  # noqa: F401 - registers the ASR backends
 from amiro.dialogue.actions import Actions, Submit
-from amiro.dialogue.asr import Recognizer
+from amiro.dialogue.asr import ConfidenceGate, Recognizer
 from amiro.dialogue.audio_loop import AudioLoopUnderstanding
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.domain import shipped_domain
@@ -49,7 +49,10 @@ def make_recognizer(
     else:
         kwargs = {"lang": lang}
     recognizer: Recognizer = create("asr", backend, **kwargs)
-    return recognizer
+    answers = (grammar or cfg.asr.grammar) == "answers"
+    return ConfidenceGate(
+        recognizer, cfg.asr.listen_reject_below if answers else cfg.asr.reject_below
+    )
 
 
 def build_dialogue(

@@ -52,6 +52,13 @@ def astar(
     return [(int(i) // w, int(i) % w) for i in flat] if flat.size else None
 
 
+def warm_up() -> None:
+    """Load (or compile) the search now: the first call costs ~0.4 s, which would otherwise
+    land inside the first control tick and stall a deployment's heartbeats."""
+    free = np.zeros((3, 3), dtype=np.bool_)
+    astar(free, np.zeros((3, 3)), (0, 0), {(2, 2)})
+
+
 @numba.njit(cache=True)
 def _box_octile(r: int, c: int, box: IntArray) -> float:
     """Octile distance to the goals' bounding box: admissible and consistent for any goal set."""

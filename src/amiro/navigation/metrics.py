@@ -16,13 +16,28 @@ FloatArray = npt.NDArray[np.float64]
 def ate_rmse(estimate: FloatArray, reference: FloatArray) -> float:
     """RMSE (m) of positions (n, 2) after the rigid 2D alignment that best fits the reference
     (Umeyama without scale), so a different map origin is not counted as error."""
+    return _aligned_rmse(estimate, reference, with_scale=False)[0]
+
+
+def ate_similarity(estimate: FloatArray, reference: FloatArray) -> tuple[float, float]:
+    """RMSE (m) after the best similarity alignment, and that alignment's scale: separates
+    a map that is uniformly too small or large (scale != 1, invisible to loop closure) from
+    one that is bent or torn (the RMSE left after scaling)."""
+    return _aligned_rmse(estimate, reference, with_scale=True)
+
+
+def _aligned_rmse(
+    estimate: FloatArray, reference: FloatArray, with_scale: bool
+) -> tuple[float, float]:
+    """Umeyama (1991): the rotation (and scale) mapping ``estimate`` onto ``reference``."""
     mu_e, mu_r = estimate.mean(axis=0), reference.mean(axis=0)
     e, r = estimate - mu_e, reference - mu_r
-    u, _, vt = np.linalg.svd(e.T @ r)
-    d = np.sign(np.linalg.det(u @ vt))
-    rot = (u @ np.diag([1.0, d]) @ vt).T
-    aligned = e @ rot.T + mu_r
-    return float(np.sqrt(np.mean(np.sum((aligned - reference) ** 2, axis=1))))
+    u, sv, vt = np.linalg.svd(e.T @ r)
+    flip = np.diag([1.0, np.sign(np.linalg.det(u @ vt))])
+    rot = (u @ flip @ vt).T
+    scale = float(np.sum(sv * np.diag(flip)) / np.sum(e**2)) if with_scale else 1.0
+    aligned = scale * e @ rot.T + mu_r
+    return float(np.sqrt(np.mean(np.sum((aligned - reference) ** 2, axis=1)))), scale
 
 
 def resample(points: list[Pose2D], spacing: float = 0.1) -> FloatArray:

@@ -29,8 +29,11 @@ class LogOddsGrid:
         resolution: float,
         origin: tuple[float, float],
         free_margin: float = 0.0,
+        clamp: float = L_CLAMP,
     ) -> None:
         self.resolution = resolution
+        # log-odds bound: how many contrary observations it takes to change a cell's mind
+        self.clamp = clamp
         # beams are free only up to this fraction of their length short of the hit (at least
         # a cell): with range noise, beams that overshoot would otherwise erase the near face
         # of walls seen from afar, and the map (then the pose) would slide along corridors
@@ -69,8 +72,8 @@ class LogOddsGrid:
         # repeated indices all write the same value, so no de-duplication is needed; a cell
         # both crossed and hit this scan takes only the hit (from its value before the scan)
         occ_before = flat[occ]
-        flat[free] = np.maximum(flat[free] + L_FREE, -L_CLAMP)
-        flat[occ] = np.minimum(occ_before + L_OCC, L_CLAMP)
+        flat[free] = np.maximum(flat[free] + L_FREE, -self.clamp)
+        flat[occ] = np.minimum(occ_before + L_OCC, self.clamp)
         changed = np.concatenate((free, occ))
         self.prob.reshape(-1)[changed] = 1.0 - 1.0 / (1.0 + np.exp(flat[changed]))
 

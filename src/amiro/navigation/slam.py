@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
-from amiro.navigation.occupancy import LogOddsGrid, bilinear
+from amiro.navigation.occupancy import L_CLAMP, LogOddsGrid, bilinear
 from amiro.navigation.poses import between, compose
 from amiro.sim.geometry import wrap_angle
 
@@ -35,6 +35,8 @@ class SlamParams:
     update_min_a: float = 0.1
     odom_weight: float = 20.0  # prior strength on the odometry guess (per level, scaled)
     free_margin: float = 0.0  # fraction of the range (see LogOddsGrid); 0: one cell
+    clamp: float = L_CLAMP  # log-odds bound of the matching maps (see LogOddsGrid)
+    max_correction_m: float = math.inf  # a match this far from the odometry guess is refused
 
 
 class HectorSlam:
@@ -46,7 +48,7 @@ class HectorSlam:
         half = p.size_m / 2.0
         origin = (self.pose.x - half, self.pose.y - half)
         self.levels = [
-            LogOddsGrid(p.size_m, p.size_m, p.resolution * 2**k, origin, p.free_margin)
+            LogOddsGrid(p.size_m, p.size_m, p.resolution * 2**k, origin, p.free_margin, p.clamp)
             for k in range(p.levels)
         ]
         self._last_odom: Pose2D | None = None

@@ -11,9 +11,8 @@ import numpy as np
 
 from amiro.core.gridmap import save_map
 from amiro.navigation.carmen import read_carmen
-from amiro.navigation.graph_slam import LIDAR_FREE_MARGIN, GraphSlam, GraphSlamParams
-from amiro.navigation.metrics import ate_rmse
-from amiro.navigation.slam import SlamParams
+from amiro.navigation.graph_slam import GraphSlam, GraphSlamParams, tracking_params
+from amiro.navigation.metrics import ate_rmse, ate_similarity
 
 
 def run_slam(
@@ -24,12 +23,7 @@ def run_slam(
     loop_closure: bool = True,
 ) -> dict[str, Any]:
     scans = read_carmen(log)
-    slam = GraphSlam(
-        GraphSlamParams(
-            slam=SlamParams(max_range=max_range, free_margin=LIDAR_FREE_MARGIN),
-            loop_closure=loop_closure,
-        )
-    )
+    slam = GraphSlam(GraphSlamParams(slam=tracking_params(max_range), loop_closure=loop_closure))
     fov = math.radians(fov_deg)
     t0 = time.perf_counter()  # wall time only to measure speed
     for scan in scans:
@@ -49,13 +43,17 @@ def run_slam(
     ref = np.array([[s.reference.x, s.reference.y] for s in scans])
     odo = np.array([[s.odom.x, s.odom.y] for s in scans])
     n = len(scans)
+    similarity_ate, scale = ate_similarity(est, ref)
     return {
         "scans": n,
         "ate_rmse_m": round(ate_rmse(est, ref), 4),
         "odom_ate_rmse_m": round(ate_rmse(odo, ref), 4),
+        "similarity_ate_m": round(similarity_ate, 4),
+        "scale_to_reference": round(scale, 5),
         "ms_per_scan": round(1000.0 * elapsed / n, 3),
         "backend_ms_per_scan": round(1000.0 * slam.backend_seconds / n, 3),
         "keyframes": len(slam.keyframes),
+        "refused_matches": slam.frontend.refused,
         "loop_closures": slam.loop_closures,
         "loop_closure": loop_closure,
         "map": str(out_dir / "map.yaml"),

@@ -10,6 +10,7 @@ from amiro.core.config import ConfigError
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
 from amiro.navigation.amcl import AmclParams
+from amiro.navigation.astar import warm_up
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.costmap import Costmap, GridFrame, downsample
 from amiro.navigation.follower import FollowerLimits
@@ -59,6 +60,7 @@ def build_navigation(
             raise ConfigError(f"navigation.start_place: no place named {cfg.start_place!r}")
         initial_pose = places[cfg.start_place]
     limits = FollowerLimits(max_speed=cfg.max_speed, max_turn=min(cfg.max_turn, math.pi))
+    warm_up()
     return MoveToNode(
         costmap_from_map(grid, cfg),
         places,

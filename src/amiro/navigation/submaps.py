@@ -32,7 +32,14 @@ class Submap:
         half = params.max_range + 2.0 * travel_m + 1.0
         origin = (anchor_pose.x - half, anchor_pose.y - half)
         self.levels = [
-            LogOddsGrid(2 * half, 2 * half, params.resolution * 2**k, origin, params.free_margin)
+            LogOddsGrid(
+                2 * half,
+                2 * half,
+                params.resolution * 2**k,
+                origin,
+                params.free_margin,
+                params.clamp,
+            )
             for k in range(params.levels)
         ]
         self.travel = 0.0
@@ -69,6 +76,7 @@ class SubmapFrontEnd:
         self.active: list[Submap] = []
         self._last_odom: Pose2D | None = None
         self._last_insert: Pose2D | None = None
+        self.refused = 0  # matches refused for straying from the odometry guess
 
     def track(self, px: FloatArray, py: FloatArray, odom: Pose2D | None) -> Pose2D:
         """Match one scan (points in the robot frame) and return the front-end pose."""
@@ -79,7 +87,13 @@ class SubmapFrontEnd:
         if self.active and px.size >= 10:
             p = self.params
             weight = p.odom_weight if odom is not None else 0.0
-            self.pose = match_scan(self.active[0].levels, px, py, guess, weight, p.iterations)
+            matched = match_scan(self.active[0].levels, px, py, guess, weight, p.iterations)
+            # odometry is off by millimetres over one scan's motion: a match decimetres from
+            # its guess has slid along a self-similar corridor (or onto a door one further)
+            if odom is not None and matched.distance_to(guess) > p.max_correction_m:
+                self.refused += 1
+                matched = guess
+            self.pose = matched
         else:
             self.pose = guess
         return self.pose

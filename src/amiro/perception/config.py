@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from amiro.core.config import Section
 
@@ -62,10 +62,36 @@ class TrackingSection(Section):
     smoothing: float = Field(default=0.5, gt=0.0, le=1.0)
 
 
+class CameraSection(Section):
+    """The ``camera`` backend: a real RGB-D camera's bus topics (the robot port) and where the
+    camera sits.  Without head joints on ``/joint_states`` the camera is fixed at
+    ``yaw``/``pitch`` on the base (a fixed extrinsic)."""
+
+    detector: Literal["hog", "onnx"] = Field(
+        default="hog", description="hog: OpenCV's people detector; onnx: a YOLO-layout model"
+    )
+    model: Path | None = Field(default=None, description="onnx: the detector's model file")
+    min_score: float = Field(default=0.5, ge=0.0, le=1.0, description="person boxes kept")
+    mount_height: float = Field(default=1.15, gt=0.0, description="m above the floor")
+    mount_forward: float = Field(default=0.08, description="m ahead of the base centre")
+    yaw: float = Field(default=0.0, description="rad, fixed camera, or before joints arrive")
+    pitch: float = Field(default=0.0, description="rad down, fixed camera, or before joints")
+    head_joints: bool = Field(default=True, description="follow HeadYaw/HeadPitch joint states")
+    max_skew_s: float = Field(default=0.1, gt=0.0, description="RGB-depth pairing, s")
+    max_age_s: float = Field(default=1.0, gt=0.0, description="older frames are not looked at")
+
+    @model_validator(mode="after")
+    def _model_for_onnx(self) -> CameraSection:
+        if self.detector == "onnx" and self.model is None:
+            raise ValueError("detector onnx needs model: the path of a YOLO-layout ONNX file")
+        return self
+
+
 class PerceptionConfig(Section):
-    backend: Literal["sim", "oracle"] = Field(
+    backend: Literal["sim", "oracle", "camera"] = Field(
         default="sim",
-        description="sim: simulated detector + faces + estimator + tracker; oracle: ground truth",
+        description="sim: simulated detector + faces + estimator + tracker; oracle: ground "
+        "truth; camera: the robot's RGB-D camera topics",
     )
     estimator: Literal["improved", "paper"] = "improved"
     objects_file: Path | None = Field(
@@ -75,3 +101,4 @@ class PerceptionConfig(Section):
     detector: SimDetectorSection = Field(default_factory=SimDetectorSection)
     faces: FaceSection = Field(default_factory=FaceSection)
     tracking: TrackingSection = Field(default_factory=TrackingSection)
+    camera: CameraSection = Field(default_factory=CameraSection)

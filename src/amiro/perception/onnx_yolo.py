@@ -26,6 +26,43 @@ def coco_labels() -> list[str]:
     return [line.strip() for line in text.splitlines() if line.strip()]
 
 
+def open_session(model: Path, who: str) -> Any:
+    """An onnxruntime CPU session of ``model``, or a one-line ConfigError."""
+    try:
+        ort = importlib.import_module("onnxruntime")
+    except ImportError as exc:
+        raise ConfigError(f"{who} needs onnxruntime: {exc}") from None
+    if not Path(model).is_file():
+        raise ConfigError(f"{model}: no such model file")
+    try:
+        return ort.InferenceSession(str(model), providers=["CPUExecutionProvider"])
+    except Exception as exc:  # onnxruntime raises its own exception types
+        raise ConfigError(f"{model}: not a usable ONNX model: {exc}") from None
+
+
+def input_size(session: Any, default: int = 640) -> int:
+    """The square input side of a YOLO-layout model (``default`` when dynamic)."""
+    side = session.get_inputs()[0].shape[2]
+    return int(side) if isinstance(side, int) else default
+
+
+def letterbox(
+    rgb: npt.NDArray[Any], size: int
+) -> tuple[npt.NDArray[np.float32], float, float, float]:
+    """YOLO's input: ``rgb`` scaled into a ``size`` square on grey 114, as (1, 3, S, S)
+    floats in [0, 1]; with the scale and the offsets (dx, dy) to undo it."""
+    cv2 = import_cv2()
+    h, w = rgb.shape[:2]
+    r = size / max(h, w)
+    nw, nh = round(w * r), round(h * r)
+    canvas = np.full((size, size, 3), 114, dtype=np.uint8)
+    dx, dy = (size - nw) / 2.0, (size - nh) / 2.0
+    image = np.ascontiguousarray(rgb, dtype=np.uint8)
+    canvas[int(dy) : int(dy) + nh, int(dx) : int(dx) + nw] = cv2.resize(image, (nw, nh))
+    blob = canvas.astype(np.float32).transpose(2, 0, 1)[None] / 255.0
+    return blob, r, float(int(dx)), float(int(dy))
+
+
 class YoloOnnxDetector:
     def __init__(
         self,
@@ -34,39 +71,17 @@ class YoloOnnxDetector:
         min_score: float = 0.25,
         nms_iou: float = 0.45,
     ) -> None:
-        try:
-            ort = importlib.import_module("onnxruntime")
-        except ImportError as exc:
-            raise ConfigError(f"the ONNX detector needs onnxruntime: {exc}") from None
-        if not Path(model).is_file():
-            raise ConfigError(f"{model}: no such model file")
-        try:
-            self.session: Any = ort.InferenceSession(str(model), providers=["CPUExecutionProvider"])
-        except Exception as exc:  # onnxruntime raises its own exception types
-            raise ConfigError(f"{model}: not a usable ONNX model: {exc}") from None
-        inp = self.session.get_inputs()[0]
-        self.input_name = inp.name
-        self.size = int(inp.shape[2]) if isinstance(inp.shape[2], int) else 640
+        self.session = open_session(model, "the ONNX detector")
+        self.input_name = self.session.get_inputs()[0].name
+        self.size = input_size(self.session)
         self.labels = labels or coco_labels()
         self.min_score = min_score
         self.nms_iou = nms_iou
         self.cv2 = import_cv2()
 
-    def _letterbox(
-        self, rgb: npt.NDArray[Any]
-    ) -> tuple[npt.NDArray[np.float32], float, float, float]:
-        h, w = rgb.shape[:2]
-        r = self.size / max(h, w)
-        nw, nh = round(w * r), round(h * r)
-        canvas = np.full((self.size, self.size, 3), 114, dtype=np.uint8)
-        dx, dy = (self.size - nw) / 2.0, (self.size - nh) / 2.0
-        canvas[int(dy) : int(dy) + nh, int(dx) : int(dx) + nw] = self.cv2.resize(rgb, (nw, nh))
-        blob = canvas.astype(np.float32).transpose(2, 0, 1)[None] / 255.0
-        return blob, r, float(int(dx)), float(int(dy))
-
     def detect(self, frame: Frame) -> list[Detection2D]:
         rgb = require_rgb(frame, "the ONNX detector")
-        blob, r, dx, dy = self._letterbox(np.ascontiguousarray(rgb, dtype=np.uint8))
+        blob, r, dx, dy = letterbox(rgb, self.size)
         (out,) = self.session.run(None, {self.input_name: blob})[:1]
         rows = np.asarray(out, dtype=np.float64).reshape(-1, out.shape[-1])
         if rows.shape[1] != 5 + len(self.labels):

@@ -11,12 +11,12 @@ import numpy as np
 
 from amiro.core.messages import Point
 from amiro.perception.ports import SeenPerson
-from amiro.sim.simulator import Simulation
+from amiro.sim.sensing import HeadCamera
 
 
 class OraclePeopleFinder:
     def __init__(
-        self, sim: Simulation, rng: np.random.Generator, position_noise_m: float = 0.1
+        self, sim: HeadCamera, rng: np.random.Generator, position_noise_m: float = 0.1
     ) -> None:
         self.sim = sim
         self.rng = rng

@@ -1,13 +1,16 @@
 """Assembles the people finder the behaviour tasks use, from the ``perception:`` config.
 
-The ``sim`` backend is the module's real pipeline run on the simulator: detector boxes, the
-depth of each box, face identity, the 3D estimator with the head joints and the robot's
-pose, and the tracker.  The ``oracle`` backend is kept for tests and as a baseline.
+The ``sim`` backend is the module's real pipeline run on the simulated head camera: detector
+boxes, the depth of each box, face identity, the 3D estimator with the head joints and the
+robot's pose, and the tracker.  It reads the camera through :class:`HeadCamera`, so it runs
+the same in one process and on a deployment's edge.  The ``oracle`` backend is kept for
+tests and as a baseline, chosen only by name.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,6 +31,7 @@ from amiro.perception.sim_detector import SimDetector, best_match
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.tracking import Measurement, PeopleTracker
 from amiro.sim.messages import CameraObservation
+from amiro.sim.sensing import HeadCamera
 from amiro.sim.simulator import Simulation
 
 # Depth the simulator's camera reports for a box no resident explains (a false positive):
@@ -37,42 +41,79 @@ BACKGROUND_DEPTH = (1.0, 6.0)
 PoseSource = Callable[[], Pose2D | None]
 
 
+@dataclass(frozen=True)
+class _Optics:
+    """The camera's geometry and the detector sized to its image, once the camera reported."""
+
+    geometry: CameraGeometry
+    detector: SimDetector
+
+
 class SimPeopleFinder:
-    """Detector → depth → face → 3D estimate → tracks, on the simulated head camera."""
+    """Detector → depth → face → 3D estimate → tracks, on the robot's head camera.
+
+    ``camera`` is the in-process simulator or a feed of its bridged topics: the same code runs
+    on the embedded system and on a deployment's edge.
+    """
 
     def __init__(
         self,
-        sim: Simulation,
+        camera: HeadCamera,
         rng: np.random.Generator,
         cfg: PerceptionConfig,
         localization: PoseSource | None = None,
     ) -> None:
-        self.sim = sim
+        self.camera = camera
         self.cfg = cfg
         self.localization = localization
-        self.geometry = camera_geometry(sim)
-        rng_detect, rng_face, self.rng = rng.spawn(3)
-        self.detector = SimDetector(
-            rng_detect, cfg.detector, (self.geometry.width, self.geometry.height)
-        )
-        self.faces = SimFaceIdentifier(rng_face, (r.name for r in sim.config.residents), cfg.faces)
+        self._rng_detect, rng_face, self.rng = rng.spawn(3)
+        self.faces = SimFaceIdentifier(rng_face, camera.household(), cfg.faces)
         self.tracker = PeopleTracker(cfg.tracking)
+        self._optics: _Optics | None = None
+        self.estimates = 0  # people placed in the map so far, for reports
 
     def look(self) -> list[SeenPerson]:
-        observations = self.sim.observe()
+        optics = self._ready()
+        pose, joints = self._pose(), self.camera.head_joints()
+        if optics is None or pose is None or joints is None:
+            return []  # nothing from the robot yet
+        observations = self.camera.observe()
         detections = [
-            d for d in self.detector.detect(Frame(observations=observations)) if d.label == "person"
+            d
+            for d in optics.detector.detect(Frame(observations=observations))
+            if d.label == "person"
         ]
-        found = self._measure(detections, observations)
-        tracks = self.tracker.update(self.sim.robot.now(), found)
+        views = Views.single(pose.x, pose.y, pose.theta, *joints, len(detections))
+        found = self._measure(detections, observations, optics.geometry, views)
+        self.estimates += len(found)
+        tracks = self.tracker.update(self.camera.now(), found)
         return [
             SeenPerson(t.name, t.position, t.score, t.id, t.face_backlit)
             for t in tracks
             if t.confirmed
         ]
 
+    def _ready(self) -> _Optics | None:
+        if self._optics is None:
+            info = self.camera.camera_info()
+            if info is None:
+                return None
+            geometry = CameraGeometry.from_info(info, *self.camera.camera_mount())
+            size = (geometry.width, geometry.height)
+            self._optics = _Optics(geometry, SimDetector(self._rng_detect, self.cfg.detector, size))
+        return self._optics
+
+    def _pose(self) -> Pose2D | None:
+        """The localisation estimate, else whatever pose the camera's source knows."""
+        estimate = self.localization() if self.localization is not None else None
+        return estimate if estimate is not None else self.camera.robot_pose()
+
     def _measure(
-        self, detections: list[Detection2D], observations: list[CameraObservation]
+        self,
+        detections: list[Detection2D],
+        observations: list[CameraObservation],
+        geometry: CameraGeometry,
+        views: Views,
     ) -> list[Measurement]:
         if not detections:
             return []
@@ -85,7 +126,7 @@ class SimPeopleFinder:
             ]
         )
         names = {id(o): self.faces.identify(o) for o in matched if o is not None}
-        points = self.estimate([d.bbox for d in detections], depth)
+        points = self.estimate(geometry, [d.bbox for d in detections], depth, views)
         return [
             Measurement(
                 Point(*map(float, p)),
@@ -96,45 +137,48 @@ class SimPeopleFinder:
             for d, o, p in zip(detections, matched, points, strict=True)
         ]
 
-    def estimate(self, boxes: list[BoundingBox2D], depth: FloatArray) -> FloatArray:
+    def estimate(
+        self, geometry: CameraGeometry, boxes: list[BoundingBox2D], depth: FloatArray, views: Views
+    ) -> FloatArray:
         """Map-frame points of the people in ``boxes`` at their depth readings."""
-        estimate = self.localization() if self.localization is not None else None
-        views = robot_views(self.sim, len(boxes), estimate)
         u = np.array([b.cx for b in boxes])
         v = np.array([b.cy for b in boxes])
         if self.cfg.estimator == "paper":
-            return paper_formula(self.geometry, u, v, depth, views)
+            return paper_formula(geometry, u, v, depth, views)
         half = np.array([b.height / 2 for b in boxes])
-        row = body_centre_row(self.geometry, v - half, v + half, depth, views.head_pitch)
-        return improved(self.geometry, u, row, depth, views)
+        row = body_centre_row(geometry, v - half, v + half, depth, views.head_pitch)
+        return improved(geometry, u, row, depth, views)
 
 
-def robot_views(sim: Simulation, n: int, pose: Pose2D | None = None) -> Views:
-    """The robot's pose (the localisation estimate when given, else the simulator's truth)
-    and head joints now, for ``n`` detections."""
-    robot = sim.robot
-    pose = pose if pose is not None else robot.true_pose
-    return Views.single(pose.x, pose.y, pose.theta, robot.head_yaw, robot.head_pitch, n)
+def robot_views(sim: Simulation, n: int) -> Views:
+    """The simulator's true pose and head joints now, for ``n`` detections."""
+    pose = sim.robot_pose()
+    return Views.single(pose.x, pose.y, pose.theta, *sim.head_joints(), n)
 
 
 def camera_geometry(sim: Simulation) -> CameraGeometry:
-    camera = sim.residents.camera
-    return CameraGeometry.from_info(camera.info(0.0), camera.params.height, camera.params.forward)
+    return CameraGeometry.from_info(sim.camera_info(), *sim.camera_mount())
 
 
 def build_people_finder(
-    sim: Simulation,
+    camera: HeadCamera,
     rng: np.random.Generator,
     cfg: PerceptionConfig,
     localization: PoseSource | None = None,
 ) -> PeopleFinder:
-    """The people finder ``cfg.backend`` names; positions go into the map frame through
-    ``localization`` (the robot's pose estimate), or the simulator's true pose without it."""
+    """The people finder ``cfg.backend`` names, on ``camera`` (the simulator or a feed of its
+    topics); positions go into the map frame through ``localization`` (the robot's pose
+    estimate), or the pose the camera's source knows without it."""
+    if cfg.backend == "camera":
+        raise ConfigError(
+            "perception.backend: camera reads a real robot's camera topics: build it with "
+            "amiro.perception.camera_stack.build_camera_modules (robot.adapter: ros2 or naoqi)"
+        )
     if cfg.backend == "oracle":
-        return OraclePeopleFinder(sim, rng, cfg.position_noise_m)
+        return OraclePeopleFinder(camera, rng, cfg.position_noise_m)
     if cfg.faces.backend == "dlib":
         raise ConfigError(
             "perception.faces.backend: dlib needs camera images and the simulated camera "
             "renders none; use sim here (FaceGallery + DlibFaceEmbedder work on real images)"
         )
-    return SimPeopleFinder(sim, rng, cfg, localization)
+    return SimPeopleFinder(camera, rng, cfg, localization)

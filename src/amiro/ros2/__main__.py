@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import NoReturn
 
 from amiro import cli
 from amiro.ros2.cli import register
@@ -23,10 +24,10 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def run() -> int:
+def run() -> NoReturn:
     cli.build_parser = build_parser  # this process's entry point: nothing else uses the CLI
-    return cli.main(sys.argv[1:])
+    cli.exit_process(cli.main(sys.argv[1:]))
 
 
 if __name__ == "__main__":
-    sys.exit(run())
+    run()

@@ -24,6 +24,15 @@ def register(sub: Subcommands) -> None:
     sim.add_argument("--ros2", action="store_true", help="publish and subscribe over ROS 2")
     sim.add_argument("--speed", type=float, default=1.0, help="sim seconds per real second")
     sim.add_argument("--duration", type=float, default=None, help="stop after this sim time (s)")
+    sim.add_argument(
+        "--camera-rate",
+        type=float,
+        default=2.0,
+        help="rendered RGB-D frames per second on /camera/* (default 2; 0: no images)",
+    )
+    sim.add_argument(
+        "--camera-size", default="320x240", help="rendered image size WxH (default 320x240)"
+    )
     _common(sim)
 
     node = add_command(
@@ -76,9 +85,20 @@ def _sim(args: argparse.Namespace) -> int:
 
     if not args.ros2:
         raise ConfigError("amiro sim only runs as a ROS 2 node for now: add --ros2")
-    data = {"role": "sim", "speed": args.speed, "duration_s": args.duration}
+    data: dict[str, Any] = {"role": "sim", "speed": args.speed, "duration_s": args.duration}
+    if args.camera_rate != 0:
+        data["camera"] = {"rate_hz": args.camera_rate, **_image_size(args.camera_size)}
     node = parse(NodeConfig, _with_domain(data, args.domain_id), "amiro sim")
     return _finish(args, run_process("sim", node, args.seed, args.events))
+
+
+def _image_size(text: str) -> dict[str, int]:
+    from amiro.core.config import ConfigError
+
+    width, sep, height = text.partition("x")
+    if not (sep and width.isdigit() and height.isdigit()):
+        raise ConfigError(f"--camera-size {text!r}: expected WIDTHxHEIGHT, e.g. 320x240")
+    return {"width": int(width), "height": int(height)}
 
 
 def _node(args: argparse.Namespace) -> int:

@@ -3,7 +3,8 @@
 A process has a role: ``sim`` (the robot: simulator, or a real robot's adapter), ``edge``
 (navigation, perception, activity, behaviour engine) or ``cloud`` (smart environment,
 notifications' ledger, watchdog; with ``serve_services: [/amiro/dialogue/understand]`` also
-the dialogue).  Unset topic lists take the role's defaults below.
+the dialogue, with ``web:`` also the dashboard).  Unset topic lists take the role's defaults
+below.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from pydantic import Field
 
 from amiro.core.config import Section
 from amiro.ros2.env import MAX_DOMAIN_ID
+from amiro.web.config import WebConfig
 
 Role = Literal["sim", "edge", "cloud"]
 
@@ -23,15 +25,19 @@ DEFAULT_PUBLISH: dict[str, tuple[str, ...]] = {
         "/scan",
         "/odom",
         "/tf",
+        "/tf_static",
         "/map",
         "/joint_states",
         "/amiro/sim/ground_truth",
-        "/amiro/sim/observations",
+        "/amiro/sim/observations",  # the simulated head camera's frame
+        "/amiro/sim/skeletons",
+        "/camera/camera_info",
         "/amiro/speech/heard",
         "/amiro/heartbeat",
     ),
     "edge": (
         "/cmd_vel",
+        "/tf",  # map -> odom from localisation
         "/amiro/head/cmd",
         "/amiro/say",
         "/amiro/display",
@@ -47,12 +53,28 @@ DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
         "/scan",
         "/odom",  # AMCL, the default localisation, needs odometry as well as the scan
         "/amiro/sim/ground_truth",
+        # perception and activity: the camera's frame and intrinsics, head joints, skeletons
         "/amiro/sim/observations",
+        "/camera/camera_info",
+        "/joint_states",
+        "/amiro/sim/skeletons",
         "/amiro/speech/heard",
         "/amiro/notifications",
     ),
     "cloud": ("/amiro/events", "/amiro/notifications/ack", "/amiro/heartbeat"),
 }
+
+
+# What a sim process with a rendered camera exports besides its defaults (the robot port's).
+CAMERA_TOPICS = ("/camera/image_raw", "/camera/depth/image_raw", "/camera/camera_info")
+
+
+class SimCameraSection(Section):
+    """``camera:`` of a sim process: render the head camera's images at this rate and size."""
+
+    rate_hz: float = Field(default=2.0, gt=0.0, le=30.0, description="frames per sim second")
+    width: int = Field(default=320, ge=32, le=1920, description="pixels")
+    height: int = Field(default=240, ge=24, le=1080, description="pixels")
 
 
 class RosSection(Section):
@@ -75,6 +97,12 @@ class NodeConfig(Section):
     wait_timeout_s: float = Field(default=30.0, gt=0)
     publish: tuple[str, ...] | None = None
     subscribe: tuple[str, ...] | None = None
+    publish_also: tuple[str, ...] = Field(
+        default=(), description="topics exported besides ``publish`` (or the role's defaults)"
+    )
+    subscribe_also: tuple[str, ...] = Field(
+        default=(), description="topics imported besides ``subscribe`` (or the defaults)"
+    )
     remap: dict[str, str] = Field(default_factory=dict)
     serve_actions: tuple[str, ...] = Field(
         default=(), description="actions whose server runs here, offered over ROS 2"
@@ -95,14 +123,30 @@ class NodeConfig(Section):
     watch: dict[str, float] = Field(
         default_factory=dict, description="cloud: process name -> heartbeat timeout (s)"
     )
+    web: WebConfig | None = Field(
+        default=None,
+        description="cloud: serve the dashboard (needs call_actions: [/amiro/behavior/run])",
+    )
+    camera: SimCameraSection | None = Field(
+        default=None,
+        description="sim: publish rendered RGB, depth and CameraInfo as a real robot's camera "
+        "would (``amiro sim --ros2`` turns it on)",
+    )
     stop_after_acks: int | None = Field(default=None, ge=1)
     duration_s: float | None = Field(default=None, gt=0)
 
     def topics_out(self) -> tuple[str, ...]:
-        return DEFAULT_PUBLISH[self.role] if self.publish is None else self.publish
+        base = DEFAULT_PUBLISH[self.role] if self.publish is None else self.publish
+        rendered = CAMERA_TOPICS if self.role == "sim" and self.camera is not None else ()
+        return _merged(base, (*self.publish_also, *rendered))
 
     def topics_in(self) -> tuple[str, ...]:
-        return DEFAULT_SUBSCRIBE[self.role] if self.subscribe is None else self.subscribe
+        base = DEFAULT_SUBSCRIBE[self.role] if self.subscribe is None else self.subscribe
+        return _merged(base, self.subscribe_also)
 
     def ros_node_name(self, process: str) -> str:
         return self.ros.node_name or f"amiro_{process}"
+
+
+def _merged(base: tuple[str, ...], extra: tuple[str, ...]) -> tuple[str, ...]:
+    return tuple(dict.fromkeys((*base, *extra)))

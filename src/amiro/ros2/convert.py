@@ -16,6 +16,7 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 from pydantic import TypeAdapter
 
+from amiro.activity.skeleton import NUM_JOINTS
 from amiro.core.messages import (
     BehaviorEvent,
     CameraInfo,
@@ -31,6 +32,7 @@ from amiro.core.messages import (
     Pose2D,
     PoseStamped,
     Quaternion,
+    Skeleton,
     SpeechRequest,
     String,
     TransformStamped,
@@ -414,6 +416,34 @@ def bus_say(msg: Any) -> SpeechRequest:
     return SpeechRequest(text=text)
 
 
+SKELETON_KEYS = frozenset({"stamp", "frame_id", "body_id", "joints", "tracked"})
+
+
+def ros_skeleton(types: MsgTypes, msg: Skeleton, now: float) -> Any:
+    """An NTU skeleton as JSON (no standard ROS type has one): untracked joints are zeros."""
+    joints = np.where(msg.tracked[:, None], msg.joints, 0.0)
+    data = {
+        "stamp": msg.header.stamp,
+        "frame_id": msg.header.frame_id,
+        "body_id": msg.body_id,
+        "joints": [round(float(v), 5) for v in joints.ravel()],
+        "tracked": [bool(t) for t in msg.tracked],
+    }
+    return types.make(STRING, data=json.dumps(data))
+
+
+def bus_skeleton(msg: Any) -> Skeleton:
+    data = json.loads(str(msg.data))
+    if not isinstance(data, dict) or not data.keys() >= SKELETON_KEYS:
+        raise ValueError(f"a skeleton is a JSON object with {', '.join(sorted(SKELETON_KEYS))}")
+    joints = np.asarray(data["joints"], dtype=np.float64)
+    tracked = np.asarray(data["tracked"], dtype=np.bool_)
+    if joints.shape != (3 * NUM_JOINTS,) or tracked.shape != (NUM_JOINTS,):
+        raise ValueError(f"a skeleton has {NUM_JOINTS} joints of x, y, z and a tracked flag each")
+    header = Header(float(data["stamp"]), str(data["frame_id"]))
+    return Skeleton(header, int(data["body_id"]), joints.reshape(NUM_JOINTS, 3), tracked)
+
+
 STANDARD_CODECS: tuple[Codec[Any], ...] = (
     Codec(LaserScan, "sensor_msgs/msg/LaserScan", ros_scan, bus_scan),
     Codec(Odometry, "nav_msgs/msg/Odometry", ros_odometry, bus_odometry),
@@ -428,4 +458,5 @@ STANDARD_CODECS: tuple[Codec[Any], ...] = (
     Codec(String, STRING, ros_string, bus_string),
     Codec(BehaviorEvent, STRING, ros_event, bus_event),
     Codec(SpeechRequest, STRING, ros_say, bus_say),
+    Codec(Skeleton, STRING, ros_skeleton, bus_skeleton),
 )

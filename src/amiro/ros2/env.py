@@ -8,8 +8,12 @@ deployments stay on loopback in their own ``ROS_DOMAIN_ID``.
 
 from __future__ import annotations
 
+import fcntl
 import os
-from collections.abc import Mapping
+import tempfile
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+from pathlib import Path
 
 RMW = "rmw_fastrtps_cpp"
 MAX_DOMAIN_ID = 101  # the largest id whose DDS ports stay valid on Linux
@@ -31,3 +35,27 @@ def apply(env: Mapping[str, str]) -> None:
     """Set these variables in this process, before rclpy is initialised."""
     os.environ.update(env)
     os.environ.pop("ROS_LOCALHOST_ONLY", None)
+
+
+@contextmanager
+def claimed_domain(first: int = 1, lock_dir: Path | None = None) -> Iterator[int]:
+    """A ROS domain id no other amiro process on this machine holds while the block runs.
+
+    Concurrent test runs or deployments on one machine would otherwise discover each other
+    in a shared domain; an advisory lock file per id keeps them apart (released on exit,
+    also when the process dies)."""
+    folder = lock_dir or Path(tempfile.gettempdir())
+    for domain in range(first, MAX_DOMAIN_ID + 1):
+        handle = (folder / f"amiro-ros-domain-{domain}.lock").open("a")
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            handle.close()
+            continue
+        try:
+            yield domain
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+            handle.close()
+        return
+    raise RuntimeError(f"every ROS domain id from {first} to {MAX_DOMAIN_ID} is in use here")

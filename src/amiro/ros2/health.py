@@ -3,15 +3,19 @@
 Every robot-side and edge process publishes a :class:`Heartbeat`; the cloud's
 :class:`Watchdog` raises ``node_lost`` / ``node_back`` events on ``/amiro/events`` when
 one stops and comes back.  The :class:`NotificationLedger` keeps each notification until it
-is acknowledged and re-sends the pending ones when the edge comes back, so a behaviour cut
-short by a crashed edge runs again on the restarted one (at-least-once delivery).
+is acknowledged, with the latest checkpoint of the behaviour answering it (the edge's
+``behavior_checkpoint`` events), and re-sends the pending ones with their checkpoints when
+the edge comes back: the restarted edge resumes each behaviour at the task that was running
+(at-least-once delivery; at-least-once execution of that one task).
 """
 
 from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from typing import Any
 
+from amiro.behavior.checkpoint import with_checkpoint
 from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.tasks.notify import ACK_TOPIC
 from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
@@ -84,13 +88,15 @@ class Watchdog(Node):
 
 
 class NotificationLedger(Node):
-    """Remembers unacknowledged notifications; re-sends them when ``edge`` comes back."""
+    """Remembers unacknowledged notifications and their behaviours' latest checkpoints;
+    re-sends them, each with its checkpoint, when ``edge`` comes up (late) or back."""
 
     def __init__(self, edge: str = "edge", resend_delay_s: float = 1.0) -> None:
-        super().__init__("notification_ledger")
+        super().__init__("redelivery")  # the environment's ledger is "notification_ledger"
         self.edge = edge
         self.resend_delay_s = resend_delay_s
         self.pending: dict[str, Notification] = {}
+        self.checkpoints: dict[str, dict[str, Any]] = {}
         self.resent = 0
 
     def on_start(self) -> None:
@@ -105,16 +111,29 @@ class NotificationLedger(Node):
 
     def _on_ack(self, ack: Acknowledgement) -> None:
         self.pending.pop(ack.id, None)
+        self.checkpoints.pop(ack.id, None)
 
     def _on_event(self, event: BehaviorEvent) -> None:
-        if event.type == "node_back" and event.detail.get("node") == self.edge:
-            # Give the new edge's subscriptions a moment to be discovered.
+        if event.type == "behavior_checkpoint":
+            ident, checkpoint = event.detail.get("id"), event.detail.get("checkpoint")
+            # Kept as sent: the edge that resumes from it validates it.
+            if isinstance(ident, str) and ident in self.pending and isinstance(checkpoint, dict):
+                self.checkpoints[ident] = checkpoint
+        elif event.type in ("node_up", "node_back") and event.detail.get("node") == self.edge:
+            # Up: what was raised before the edge listened (a slow start) was lost; back: a
+            # restarted edge.  Give its subscriptions a moment to be discovered; a note it
+            # did get is dropped there as a duplicate of the running behaviour.
             self.call_later(self.resend_delay_s, self._resend)
 
     def _resend(self) -> None:
         for note in list(self.pending.values()):
+            checkpoint = self.checkpoints.get(note.id)
             self.resent += 1
+            detail = {
+                "id": note.id,
+                "resume_task": None if checkpoint is None else checkpoint.get("task"),
+            }
             self.events.publish(
-                BehaviorEvent(self.now(), "notification_redelivered", detail={"id": note.id})
+                BehaviorEvent(self.now(), "notification_redelivered", detail=detail)
             )
-            self.pub.publish(note)
+            self.pub.publish(note if checkpoint is None else with_checkpoint(note, checkpoint))

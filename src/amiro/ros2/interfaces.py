@@ -18,6 +18,12 @@ from pydantic import TypeAdapter, ValidationError
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToResult
+from amiro.ros2.behaviors import (
+    BEHAVIOR_ACTION,
+    BehaviorFeedback,
+    BehaviorGoal,
+    BehaviorResult,
+)
 from amiro.ros2.dialogue import UNDERSTAND_SERVICE, Understood
 
 T = TypeVar("T")
@@ -97,6 +103,13 @@ ACTIONS: dict[str, ActionSpec] = {
             MoveToFeedback,
             MoveToResult,
             lambda reason: MoveToResult(False, reason),
+        ),
+        action_spec(
+            BEHAVIOR_ACTION,
+            BehaviorGoal,
+            BehaviorFeedback,
+            BehaviorResult,
+            lambda reason: BehaviorResult(False, reason),
         ),
     )
 }

@@ -8,14 +8,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import Any
 
 import amiro.behavior.tasks  # noqa: F401 - registers the task types
-from amiro.activity.oracle import OracleActivityRecognizer
-from amiro.behavior.engine import BehaviorEngine
-from amiro.behavior.handlers import HandlerRegistry, yaml_handler
-from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
-from amiro.core.config import ConfigError
 from amiro.core.gridmap import load_map
 from amiro.core.messages import OccupancyGrid
 from amiro.core.node import Node
@@ -23,21 +18,33 @@ from amiro.core.runtime import Runtime
 from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import Understanding
-from amiro.dialogue.profiles import SpeakerProfile
-from amiro.dialogue.stack import build_dialogue
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
-from amiro.navigation.localization import GROUND_TRUTH_TOPIC, LOCALIZATION_TOPIC
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToNode
 from amiro.navigation.stack import build_navigation
-from amiro.perception.oracle import OraclePeopleFinder
-from amiro.ros2.boundary import NavigationState, ObservationFeed, ObservationPublisher
+from amiro.perception.stack import SimPeopleFinder
+from amiro.ros2.behaviors import BEHAVIOR_ACTION, BehaviorActionServer
+from amiro.ros2.boundary import HeadSensorsFeed, HeadSensorsPublisher, NavigationState
+from amiro.ros2.cloud import add_cloud_services, pose_topic
 from amiro.ros2.config import NodeConfig
-from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding, UnderstandingService
+from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding
 from amiro.ros2.health import HeartbeatNode, NotificationLedger, Watchdog
-from amiro.sim.simulator import Simulation, build_sim
+from amiro.ros2.sim_camera import SimCameraNode
+from amiro.ros2.tf import MapOdomNode, robot_frames
+from amiro.sim.camera import CameraParams
+from amiro.sim.simulator import build_sim
+from amiro.sim.skeletons import SkeletonCamera
 from amiro.sim.world import World, default_home_path
-from amiro.system import SystemConfig, nav_map_path, shipped_behavior
+from amiro.system import (
+    Senses,
+    SystemConfig,
+    build_behavior_layer,
+    build_senses,
+    nav_map_path,
+)
+
+# What the edge's report calls each perception backend.
+PERCEPTION_NAMES = {"sim": "sim-detector"}
 
 
 class MapPublisher(Node):
@@ -60,12 +67,8 @@ class RoleParts:
 
 def _navigation(runtime: Runtime, cfg: SystemConfig, world: World) -> MoveToNode:
     places = {name: world.place(name) for name in world.home.places}
+    runtime.add(MapOdomNode(pose_topic(cfg)))  # map -> odom on /tf, where localisation runs
     return runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
-
-
-def _pose_topic(cfg: SystemConfig) -> str:
-    """Where the robot's pose estimate is published (what MoveTo itself listens to)."""
-    return GROUND_TRUTH_TOPIC if cfg.navigation.localization == "oracle" else LOCALIZATION_TOPIC
 
 
 def build_sim_role(
@@ -74,9 +77,16 @@ def build_sim_role(
     sim = build_sim(runtime, cfg.sim)
     if MOVE_TO_ACTION in node.serve_actions:  # navigation next to the robot, driven remotely
         _navigation(runtime, cfg, sim.world)
-    runtime.add(ObservationPublisher(sim.observe))
+    (rng_skeletons,) = runtime.rng.spawn(1)
+    rendered = node.camera is not None
+    runtime.add(
+        HeadSensorsPublisher(sim, SkeletonCamera(sim, rng_skeletons), publish_info=not rendered)
+    )
+    if node.camera is not None:  # pixels for a real-robot stack (perception.backend camera)
+        runtime.add(SimCameraNode(sim, node.camera))
     grid = load_map(nav_map_path(cfg)).to_occupancy_grid(0.0)
     runtime.add(MapPublisher(grid))
+    runtime.add(robot_frames(sim))  # /tf_static mounts and the head camera on /tf
     runtime.add(HeartbeatNode(process, node.heartbeat_s))
 
     def summary() -> dict[str, Any]:
@@ -95,85 +105,74 @@ def build_edge_role(
 ) -> RoleParts:
     world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
     navigation: MoveToNode | NavigationState = (
-        NavigationState(runtime.bus, _pose_topic(cfg))
+        NavigationState(runtime.bus, pose_topic(cfg))
         if MOVE_TO_ACTION in node.call_actions
         else _navigation(runtime, cfg, world)
     )
-    feed = ObservationFeed(runtime.bus)
-    remote_sim = cast(Simulation, feed)  # the oracles only call observe()
+    feed = HeadSensorsFeed(
+        runtime.bus,
+        (cfg.sim.camera.height, CameraParams().forward),
+        tuple(r.name for r in cfg.sim.residents),
+        lambda: navigation.pose,
+    )
+    senses = build_senses(runtime, cfg, feed, lambda _rng: feed, feed.robot_pose)
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
         if UNDERSTAND_SERVICE in node.call_services
         else OracleUnderstanding()
     )
-    rng_perception, rng_activity = runtime.rng.spawn(2)
     modules = {
         "clock": runtime.clock,
         "world": world,
         "navigation": navigation,
-        "perception": OraclePeopleFinder(
-            remote_sim, rng_perception, cfg.perception.position_noise_m
-        ),
-        "activity": OracleActivityRecognizer(remote_sim, rng_activity, cfg.activity.accuracy),
+        "perception": senses.perception,
+        "activity": senses.activity,
         "speech": BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second),
         "nlu": nlu,
     }
-    engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
-    handlers = HandlerRegistry(engine)
-    for kind, path in {"hydration": shipped_behavior("hydration"), **cfg.behavior.handlers}.items():
-        if not path.is_file():
-            raise ConfigError(f"behavior.handlers.{kind}: {path}: no such file")
-        handlers.register(kind, yaml_handler(path), replace=True)
-    profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
-    runtime.add(NotificationHandlerNode(engine, handlers, profiles))
+    layer = build_behavior_layer(runtime, cfg, modules, checkpoints=True)
+    if BEHAVIOR_ACTION in node.serve_actions:  # the cloud's dialogue and dashboard ask
+        runtime.add(BehaviorActionServer(layer.engine, layer.handlers))
     runtime.add(HeartbeatNode(process, node.heartbeat_s))
 
     def summary() -> dict[str, Any]:
         return {
-            "runs": [{"id": r.id, "outcome": r.outcome} for r in engine.runs.values()],
-            "observations_received": feed.received,
+            "runs": [{"id": r.id, "outcome": r.outcome} for r in layer.engine.runs.values()],
+            **senses_report(cfg, senses),
+            "received": dict(feed.received),
         }
 
     return RoleParts(summary)
 
 
-def _dialogue_service(runtime: Runtime, cfg: SystemConfig) -> UnderstandingService:
-    """The dialogue stack (NLU, dialogue manager, TTS if configured) with its understanding
-    offered to the edge's Listen tasks."""
-    voices = {
-        r.name: SpeakerProfile.model_validate({"lang": r.language}) for r in cfg.sim.residents
+def senses_report(cfg: SystemConfig, senses: Senses) -> dict[str, Any]:
+    """Which perception and activity backends ran, and how many people they placed."""
+    finder = senses.perception
+    return {
+        "perception": PERCEPTION_NAMES.get(cfg.perception.backend, cfg.perception.backend),
+        "activity": cfg.activity.backend,
+        "people_estimates": finder.estimates if isinstance(finder, SimPeopleFinder) else None,
     }
-    dialogue = build_dialogue(runtime, cfg.dialogue, voices)
-    return runtime.add(UnderstandingService(dialogue.nlu))
 
 
 def build_cloud_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
-    world_rooms = list(
-        World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution).home.rooms
-    )
+    home = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution).home
     env = cfg.environment
-    runtime.add(SimulatedSensorsNode(world_rooms, env.sensors, env.home_id))
-    runtime.add(RulesNode(list(env.rules), env.home_id))
+    sensors = runtime.add(SimulatedSensorsNode(list(home.rooms), env.sensors, env.home_id))
+    rules = runtime.add(RulesNode(list(env.rules), env.home_id))
     ledger = runtime.add(NotificationLedger())
     watchdog = runtime.add(Watchdog(dict(node.watch)))
-    understanding = (
-        _dialogue_service(runtime, cfg) if UNDERSTAND_SERVICE in node.serve_services else None
-    )
+    services = add_cloud_services(runtime, node, cfg, home, sensors, rules)
 
     def summary() -> dict[str, Any]:
-        report: dict[str, Any] = {
+        return {
             "pending_notifications": sorted(ledger.pending),
             "redelivered": ledger.resent,
             "lost": {name: peer.lost for name, peer in watchdog.peers.items()},
+            **services.summary(),
         }
-        if understanding is not None:
-            report["understood"] = [
-                {"intent": u.intent, "confidence": round(u.confidence, 3)}
-                for u in understanding.answered
-            ]
-        return report
 
     return RoleParts(summary)
 

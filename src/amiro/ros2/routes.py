@@ -23,13 +23,20 @@ from amiro.core.messages import (
     Pose2D,
     PoseStamped,
     SensorReading,
+    Skeleton,
     SpeechHeard,
     SpeechRequest,
     String,
     TransformStamped,
     Twist,
 )
-from amiro.ros2.boundary import HEARTBEAT_TOPIC, OBSERVATIONS_TOPIC, CameraObservations, Heartbeat
+from amiro.ros2.boundary import (
+    HEARTBEAT_TOPIC,
+    OBSERVATIONS_TOPIC,
+    SKELETONS_TOPIC,
+    CameraObservations,
+    Heartbeat,
+)
 from amiro.ros2.convert import STANDARD_CODECS, Codec, json_codec
 
 
@@ -54,6 +61,7 @@ ROUTES: dict[str, Route] = {
         Route("/cmd_vel", _standard(Twist)),
         Route("/map", _standard(OccupancyGrid), latched=True, depth=1),
         Route("/tf", _standard(TransformStamped), depth=100),
+        Route("/tf_static", _standard(TransformStamped), latched=True, depth=100),
         Route("/goal_pose", _standard(PoseStamped)),
         Route("/amiro/say", _standard(SpeechRequest)),
         Route("/amiro/events", _standard(BehaviorEvent), depth=1000),
@@ -70,6 +78,7 @@ ROUTES: dict[str, Route] = {
         Route("/amiro/sim/ground_truth", _standard(Pose2D), depth=1),
         Route("/amiro/localization/pose", _standard(Pose2D), depth=1),
         Route(OBSERVATIONS_TOPIC, json_codec(CameraObservations), depth=1),
+        Route(SKELETONS_TOPIC, _standard(Skeleton), depth=200),  # a person's history at once
         # smart environment and deployment health
         Route("/amiro/env/sensors", json_codec(SensorReading), depth=100),
         Route("/amiro/notifications", json_codec(Notification), depth=100),

@@ -50,6 +50,12 @@ def run_scenario(
     setup: Callable[[System], None] | None = None,
 ) -> ScenarioRun:
     """Build the system, let ``setup`` add to it, spin until ``finished`` (or the timeout)."""
+    if cfg.robot.adapter != "sim":
+        raise ConfigError(
+            f"robot.adapter: {cfg.robot.adapter}: scenarios script the simulated home's "
+            "residents and need the simulator (robot.adapter: sim); on a real robot use "
+            "`amiro serve --config` and trigger behaviours there"
+        )
     speed = speed if speed is not None else (LIVE_SPEED if live else None)
     if speed is not None and speed <= 0:
         raise ConfigError(f"--speed must be positive, got {speed:g}")

@@ -71,7 +71,7 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
     parts: dict[str, Any] = {}
 
     def setup(system: System) -> None:
-        world = system.sim.world
+        world = system.world
         unknown = sorted(set(opts.closed_doors) - set(world.doors))
         if unknown:
             raise ConfigError(
@@ -131,6 +131,6 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
         "plans": [p.to_dict() for p in executive.plans],
         "replans": max(len(executive.plans) - 1, 0),
         "learned": [c.to_dict() for c in kb.changes],
-        "collisions": done.system.sim.robot.collisions,
+        "collisions": done.system.require_sim("the delivery report").robot.collisions,
         "events": done.recorder.events,
     }

@@ -119,6 +119,6 @@ def run_hydration(opts: HydrationOptions) -> dict[str, Any]:
         **done.timing(),
         "steps": [r.to_dict() for r in run.records] if run else [],
         "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in recorder.acks],
-        "collisions": system.sim.robot.collisions,
+        "collisions": system.require_sim("the hydration report").robot.collisions,
         "events": recorder.events,
     }

@@ -26,6 +26,7 @@ import numpy as np
 
 from amiro.core.config import ConfigError
 from amiro.core.messages import (
+    CameraInfo,
     Header,
     JointState,
     LaserScan,
@@ -295,8 +296,28 @@ class Simulation:
     robot: SimRobotNode
     residents: SimResidentsNode
 
+    # --- the head camera (see amiro.sim.sensing.HeadCamera) -------------------------------
+    def now(self) -> float:
+        return self.robot.now()
+
     def observe(self) -> list[CameraObservation]:
         return self.residents.observe()
+
+    def head_joints(self) -> tuple[float, float]:
+        return self.robot.head_yaw, self.robot.head_pitch
+
+    def camera_info(self) -> CameraInfo:
+        return self.residents.camera.info(self.now())
+
+    def camera_mount(self) -> tuple[float, float]:
+        params = self.residents.camera.params
+        return params.height, params.forward
+
+    def robot_pose(self) -> Pose2D:
+        return self.robot.true_pose
+
+    def household(self) -> tuple[str, ...]:
+        return tuple(r.name for r in self.config.residents)
 
 
 def make_resident(spec: ResidentSpec, world: World) -> Resident:

@@ -9,13 +9,19 @@ Frames are generated lazily, when someone asks, up to the current simulated time
 
 from __future__ import annotations
 
+import math
 from collections import deque
+from collections.abc import Iterable
 
 import numpy as np
+import numpy.typing as npt
 
 from amiro.activity.labels import IDLE
 from amiro.activity.motion import FPS, Body, perform
 from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
+from amiro.core.messages import CameraInfo, Pose2D
+from amiro.sim.camera import Camera
+from amiro.sim.messages import CameraObservation
 from amiro.sim.residents import Resident
 from amiro.sim.simulator import Simulation
 
@@ -35,6 +41,7 @@ class SkeletonStream:
         self.pending: list[FloatArray] = []
         self.playing: tuple[str, bool] | None = None
         self.clips = 0  # clips generated since the activity or posture last changed
+        self.count = 0  # frames made so far; the newest is number ``count``
 
     def advance(self, now: float, activity: str, sitting: bool) -> None:
         if self.next_t is None:
@@ -48,6 +55,7 @@ class SkeletonStream:
                 self.pending = self._clip(activity, sitting)
                 self.clips += 1
             self.frames.append(self.pending.pop(0))
+            self.count += 1
             self.next_t += 1.0 / FPS
 
     def _clip(self, activity: str, sitting: bool) -> list[FloatArray]:
@@ -60,8 +68,47 @@ class SkeletonStream:
         return clip
 
     def last(self, n: int) -> FloatArray:
-        frames = list(self.frames)[-n:]
-        return np.stack([frames[0]] * (n - len(frames)) + frames)
+        return last_frames(self.frames, n)
+
+    def since(self, count: int) -> FloatArray:
+        """The frames made after frame number ``count`` (as many as the history keeps)."""
+        n = min(self.count - count, len(self.frames))
+        return np.stack(list(self.frames)[-n:])
+
+
+def last_frames(frames: Iterable[FloatArray], n: int) -> FloatArray:
+    """The last ``n`` of ``frames`` (at least one), the oldest repeated when fewer."""
+    last = list(frames)[-n:]
+    return np.stack([last[0]] * (n - len(last)) + last)
+
+
+def to_level(camera: Camera, points: FloatArray, pose: Pose2D, head_yaw: float) -> FloatArray:
+    """Map-frame points (..., 3) to the levelled camera frame (x left, y up, z forward)."""
+    flat = points.reshape(-1, 3)
+    level = camera.to_optical(flat, pose, head_yaw, 0.0) * np.array([-1.0, -1.0, 1.0])
+    out: FloatArray = level.reshape(points.shape)
+    return out
+
+
+def from_level(camera: Camera, points: FloatArray, pose: Pose2D, head_yaw: float) -> FloatArray:
+    """The inverse of :func:`to_level`: where levelled-camera points are in the map."""
+    cx, cy, cz = camera.position(pose, head_yaw)
+    yaw = pose.theta + head_yaw
+    c, s = math.cos(yaw), math.sin(yaw)
+    x, y, z = points[..., 0], points[..., 1], points[..., 2]
+    return np.stack([cx + z * c - x * s, cy + z * s + x * c, cz + y], axis=-1)
+
+
+def in_image(optical: FloatArray, info: CameraInfo) -> npt.NDArray[np.bool_]:
+    """Which optical-frame points (N, 3) the camera images: ahead of it, inside the picture."""
+    z = optical[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = info.cx + info.fx * optical[:, 0] / z
+        v = info.cy + info.fy * optical[:, 1] / z
+    seen: npt.NDArray[np.bool_] = (
+        (z > 0.1) & (u >= 0) & (u < info.width) & (v >= 0) & (v < info.height)
+    )
+    return seen
 
 
 def body_to_map(frames: FloatArray, resident: Resident) -> FloatArray:
@@ -79,6 +126,18 @@ def body_to_map(frames: FloatArray, resident: Resident) -> FloatArray:
     return out
 
 
+def framing(
+    observations: list[CameraObservation], person: str, image_height: float
+) -> tuple[float, bool] | None:
+    """(box height / image height, box clipped by the image's top or bottom), None unseen."""
+    obs = next((o for o in observations if o.name == person), None)
+    if obs is None:
+        return None
+    top = obs.bbox.cy - obs.bbox.height / 2.0
+    bottom = obs.bbox.cy + obs.bbox.height / 2.0
+    return obs.bbox.height / image_height, top <= 0.5 or bottom >= image_height - 0.5
+
+
 class SkeletonCamera:
     """The skeleton source of the simulated robot (see :class:`SkeletonSource`)."""
 
@@ -88,37 +147,46 @@ class SkeletonCamera:
         self.streams: dict[str, SkeletonStream] = {}
 
     def framing(self, person: str) -> tuple[float, bool] | None:
-        obs = next((o for o in self.sim.observe() if o.name == person), None)
-        if obs is None:
-            return None
-        height = float(self.sim.residents.camera.params.image_height)
-        top = obs.bbox.cy - obs.bbox.height / 2.0
-        bottom = obs.bbox.cy + obs.bbox.height / 2.0
-        return obs.bbox.height / height, top <= 0.5 or bottom >= height - 0.5
+        image_height = float(self.sim.residents.camera.params.image_height)
+        return framing(self.sim.observe(), person, image_height)
 
     def window(self, person: str, frames: int) -> FloatArray | None:
+        residents = self.sim.residents.residents
+        if person not in residents or all(o.name != person for o in self.sim.observe()):
+            return None
+        stream = self._advance(person)
+        return None if stream is None else self._view(stream.last(frames), person)
+
+    def fresh(self, person: str, count: int) -> tuple[FloatArray, int] | None:
+        """What the camera streams of ``person`` (known to be in view) since frame number
+        ``count``: the frames as :meth:`window` gives them (from the view now), and the
+        newest frame's number."""
+        stream = self._advance(person)
+        if stream is None or stream.count <= count:
+            return None
+        return self._view(stream.since(count), person), stream.count
+
+    def _advance(self, person: str) -> SkeletonStream | None:
         resident = self.sim.residents.residents.get(person)
-        if resident is None or all(o.name != person for o in self.sim.observe()):
+        if resident is None:
             return None
         stream = self.streams.get(person)
         if stream is None:
             stream = self.streams[person] = SkeletonStream(Body.random(self.rng), self.rng)
         sitting = resident.posture != "standing"
         stream.advance(self.sim.residents.now(), resident.activity, sitting)
-        points = body_to_map(stream.last(frames), resident).reshape(-1, 3)
+        return stream
+
+    def _view(self, body_frames: FloatArray, person: str) -> FloatArray:
+        """Body-frame skeletons as the head camera sees them now (levelled, NaN unseen)."""
+        resident = self.sim.residents.residents[person]
+        frames = len(body_frames)
+        points = body_to_map(body_frames, resident).reshape(-1, 3)
         robot, camera = self.sim.robot, self.sim.residents.camera
         pose, yaw = robot.true_pose, robot.head_yaw
         optical = camera.to_optical(points, pose, yaw, robot.head_pitch)
-        uv = camera.project(optical)
-        p = camera.params
-        seen = (
-            (optical[:, 2] > 0.1)
-            & (uv[:, 0] >= 0)
-            & (uv[:, 0] < p.width)
-            & (uv[:, 1] >= 0)
-            & (uv[:, 1] < p.image_height)
-        )
-        level = camera.to_optical(points, pose, yaw, 0.0) * np.array([-1.0, -1.0, 1.0])
+        seen = in_image(optical, camera.info(0.0))
+        level = to_level(camera, points, pose, yaw)
         level[~seen] = np.nan
         out: FloatArray = level.reshape(frames, NUM_JOINTS, 3)
         if resident.skeleton_occluded:

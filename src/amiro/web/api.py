@@ -14,17 +14,17 @@ from typing import Any, TypeVar
 
 from fastapi import APIRouter, HTTPException, Path, Query, Request
 
-from amiro.behavior.graph import TaskGraph
-from amiro.behavior.task import TaskError, make_task, task_types
+from amiro.behavior.task import TaskError, task_types
 from amiro.core.messages import Notification
 from amiro.environment.assembly import Environment
 from amiro.environment.days import clock_date
 from amiro.environment.messages import DEVICE_STATES, HEALTH_METRICS, DeviceCommand
+from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.environment.topics import DEVICE_COMMAND_TOPIC, NOTIFICATIONS_TOPIC
-from amiro.system import System
 from amiro.web.chat import ChatPort
 from amiro.web.gateway import GatewayNode
 from amiro.web.models import NAME, ChatBody, DeviceBody, ScenarioBody, SensorBody, TaskBody
+from amiro.web.robot import RobotPort
 
 T = TypeVar("T")
 CALL_TIMEOUT_S = 10.0
@@ -32,17 +32,19 @@ CALL_TIMEOUT_S = 10.0
 
 @dataclass
 class Backend:
-    """What the API serves: the system, its environment, the gateway and the chat port."""
+    """What the API serves: the robot (embedded or remote), the smart environment with its
+    simulated sensors, the gateway and the chat port."""
 
-    system: System
+    robot: RobotPort
     environment: Environment
+    sensors: SimulatedSensorsNode
     gateway: GatewayNode
     chat: ChatPort
 
 
 def build_router(backend: Backend) -> APIRouter:
     router = APIRouter(prefix="/api")
-    gw, system, env = backend.gateway, backend.system, backend.environment
+    gw, robot, env = backend.gateway, backend.robot, backend.environment
     counter = itertools.count(1)
 
     async def on_runtime(job: Callable[[], T]) -> T:
@@ -62,7 +64,7 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.get("/map")
     def home_map() -> dict[str, Any]:
-        home = system.sim.world.home
+        home = robot.home
         return {
             "name": home.name,
             "size": list(home.size),
@@ -76,18 +78,12 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.get("/behaviours")
     def behaviours() -> dict[str, Any]:
-        return {"task_types": sorted(task_types()), "scenarios": system.handlers.kinds()}
+        return {"task_types": sorted(task_types()), "scenarios": robot.scenarios()}
 
     @router.post("/tasks")
     async def run_task(body: TaskBody) -> dict[str, Any]:
-        try:
-            task = make_task(body.type, body.params)
-        except TaskError as exc:
-            raise HTTPException(422, str(exc)) from None
-        graph = TaskGraph(f"web_{body.type.lower()}", body.priority).add("task", task)
-
         def submit() -> str:
-            return system.engine.submit(graph).id
+            return robot.run_task(body.type, body.params, body.priority)
 
         try:
             return {"run": await on_runtime(submit)}
@@ -96,12 +92,12 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.post("/scenarios")
     async def run_scenario(body: ScenarioBody) -> dict[str, Any]:
-        if body.name not in system.handlers:
-            known = ", ".join(system.handlers.kinds())
+        if body.name not in robot.scenarios():
+            known = ", ".join(robot.scenarios())
             raise HTTPException(422, f"unknown scenario '{body.name}' (known: {known})")
         ident = f"web-{body.name}-{next(counter)}"
         note = Notification(ident, body.user, body.name, body.priority, reason="dashboard")
-        await on_runtime(lambda: system.runtime.bus.publish(NOTIFICATIONS_TOPIC, note))
+        await on_runtime(lambda: gw.runtime.bus.publish(NOTIFICATIONS_TOPIC, note))
         return {"id": ident}
 
     @router.post("/chat")
@@ -130,7 +126,7 @@ def build_router(backend: Backend) -> APIRouter:
             raise HTTPException(422, f"metric must be one of {', '.join(HEALTH_METRICS)}")
 
         def query() -> dict[str, Any]:
-            today = clock_date(system.runtime.clock)
+            today = clock_date(gw.runtime.clock)
             latest = env.health.latest(user, metric)
             trend = env.health.trend(user, metric, today, days)
             return {"latest": latest.to_dict() if latest else None, **trend.to_dict()}
@@ -143,17 +139,17 @@ def build_router(backend: Backend) -> APIRouter:
             raise HTTPException(
                 422, f"{body.device} can be {' or '.join(DEVICE_STATES[body.device])}"
             )
-        if body.room not in system.sim.world.home.rooms:
+        if body.room not in robot.home.rooms:
             raise HTTPException(422, f"no room '{body.room}'")
         cmd = DeviceCommand(env.config.home_id, body.room, body.device, body.state)
-        await on_runtime(lambda: system.runtime.bus.publish(DEVICE_COMMAND_TOPIC, cmd))
+        await on_runtime(lambda: gw.runtime.bus.publish(DEVICE_COMMAND_TOPIC, cmd))
         return {"sent": True}
 
     @router.post("/sensors")
     async def sensor(body: SensorBody) -> dict[str, Any]:
         """Set a simulated sensor (the "raise the temperature" button of the demo)."""
         try:
-            await on_runtime(lambda: system.sensors.set(body.room, body.sensor, body.value))
+            await on_runtime(lambda: backend.sensors.set(body.room, body.sensor, body.value))
         except ValueError as exc:
             raise HTTPException(422, str(exc)) from None
         return {"set": True}

@@ -26,19 +26,27 @@ from amiro.core.messages import (
 )
 from amiro.core.node import Node
 from amiro.dialogue.output import SAY_TOPIC
+from amiro.environment.devices import SimulatedDevicesNode
 from amiro.environment.inbox import Inbox
 from amiro.environment.messages import DeviceState
 from amiro.environment.topics import DEVICE_STATE_TOPIC, SENSORS_TOPIC
-from amiro.system import System
+from amiro.web.robot import RobotPort
 
 PATH_TOPIC = "/amiro/navigation/path"
 T = TypeVar("T")
 
 
 class GatewayNode(Node):
-    def __init__(self, system: System, period_s: float = 0.1, history: int = 200) -> None:
+    def __init__(
+        self,
+        robot: RobotPort,
+        devices: SimulatedDevicesNode | None = None,
+        period_s: float = 0.1,
+        history: int = 200,
+    ) -> None:
         super().__init__("web_gateway")
-        self.system = system
+        self.robot = robot
+        self.devices_node = devices
         self.period_s = period_s
         self.inbox = Inbox()
         self.snapshot: dict[str, Any] = {}
@@ -58,9 +66,8 @@ class GatewayNode(Node):
         self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, 1000)
         self.create_subscription(DEVICE_STATE_TOPIC, DeviceState, self._on_device, 1000)
         self.create_timer(self.period_s, self._tick)
-        devices = self.system.environment.devices
-        if devices is not None:  # their first reports went out before this node started
-            for (room, device), state in devices.states.items():
+        if self.devices_node is not None:  # their first reports went out before this started
+            for (room, device), state in self.devices_node.states.items():
                 self._note_device(room, device, state)
         self._tick()
 
@@ -113,20 +120,11 @@ class GatewayNode(Node):
         self.snapshot = self._build()
 
     def _build(self) -> dict[str, Any]:
-        sim, engine = self.system.sim, self.system.engine
-        pose = sim.robot.true_pose
         return {
             "t": round(self.now(), 2),
             "clock": self.runtime.clock.iso(self.now()),
-            "robot": {"x": round(pose.x, 3), "y": round(pose.y, 3), "theta": round(pose.theta, 3)},
+            **self.robot.state(),
             "path": self.path,
-            "people": [
-                {"name": r.name, "x": round(r.x, 2), "y": round(r.y, 2), "activity": r.activity}
-                for r in sim.residents.residents.values()
-                if r.present
-            ],
-            "current": engine.current(),
-            "queue": engine.queue_snapshot(),
             "transcript": list(self.transcript)[-30:],
             "events": list(self.events)[-30:],
             "acks": list(self.acks)[-20:],

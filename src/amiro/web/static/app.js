@@ -62,6 +62,7 @@ function drawMap(state) {
     ctx.fillStyle = "#92400e"; ctx.fillText(p.name, X(p.x) + 9, Y(p.y) - 6);
   }
   const r = state.robot;
+  if (!r) return;  // a cloud dashboard before the first pose estimate
   ctx.fillStyle = "#2563eb"; ctx.beginPath(); ctx.arc(X(r.x), Y(r.y), 9, 0, 2 * Math.PI); ctx.fill();
   ctx.strokeStyle = "#fff"; ctx.beginPath(); ctx.moveTo(X(r.x), Y(r.y));
   ctx.lineTo(X(r.x + 0.4 * Math.cos(r.theta)), Y(r.y + 0.4 * Math.sin(r.theta))); ctx.stroke();
@@ -71,7 +72,8 @@ function drawMap(state) {
 function render(state) {
   drawMap(state);
   $("clock").textContent = state.clock || "";
-  $("robot-pose").textContent = `x ${state.robot.x.toFixed(2)} m, y ${state.robot.y.toFixed(2)} m`;
+  const r = state.robot;
+  $("robot-pose").textContent = r ? `x ${r.x.toFixed(2)} m, y ${r.y.toFixed(2)} m` : "unknown";
   const cur = state.current;
   $("current-task").textContent = cur ? `${cur.name} › ${cur.type} (${cur.task}), priority ${cur.priority}` : "nothing";
   $("queue").replaceChildren(...(state.queue || []).map((q) => li(`${q.name} › ${q.type} (priority ${q.priority})`)));

@@ -1,0 +1,63 @@
+"""``python -m amiro.ros2.msgbuild --package tf2_msgs [--out PREFIX]``: run by setup.
+
+Prints what was built (or that it was already current) and how long it took; a missing
+compiler or a bad definition is one line on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from amiro.cli_support import add_json_flag, emit_json
+from amiro.core.config import ConfigError
+from amiro.ros2.msgbuild import build_package
+from amiro.ros2.msgbuild.package import shipped_packages
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m amiro.ros2.msgbuild",
+        description="Build a ROS 2 interface package shipped as .msg files into a prefix.",
+    )
+    parser.add_argument(
+        "--package",
+        action="append",
+        help=f"package to build, repeatable (default: {', '.join(shipped_packages())})",
+    )
+    parser.add_argument("--out", type=Path, help="install prefix (default: this venv)")
+    parser.add_argument("--force", action="store_true", help="rebuild even if up to date")
+    add_json_flag(parser)
+    args = parser.parse_args(argv)
+    results = []
+    try:
+        for name in args.package or shipped_packages():
+            results.append(build_package(name, args.out, force=args.force))
+    except ConfigError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    if args.json:
+        emit_json(
+            {
+                "packages": [
+                    {
+                        "package": r.package,
+                        "prefix": str(r.prefix),
+                        "skipped": r.skipped,
+                        "seconds": round(r.seconds, 2),
+                        "libraries": [str(p) for p in r.libraries],
+                    }
+                    for r in results
+                ]
+            }
+        )
+    else:
+        for r in results:
+            state = "up to date" if r.skipped else f"built in {r.seconds:.1f} s"
+            print(f"{r.package}: {state} in {r.prefix}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

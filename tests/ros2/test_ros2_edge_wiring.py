@@ -1,0 +1,85 @@
+"""The edge builds the embedded system's real perception and activity modules from the shared
+builders, and the bridged topics they need cross with their codecs."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+from amiro.activity.oracle import OracleActivityRecognizer
+from amiro.activity.recognizer import SkeletonActivityRecognizer
+from amiro.behavior.engine import BehaviorEngine
+from amiro.core.clock import SimClock
+from amiro.core.messages import Header, Skeleton
+from amiro.core.runtime import Runtime
+from amiro.perception.oracle import OraclePeopleFinder
+from amiro.perception.stack import SimPeopleFinder
+from amiro.ros2.boundary import OBSERVATIONS_TOPIC, SKELETONS_TOPIC
+from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
+from amiro.ros2.roles import build_edge_role
+from amiro.ros2.routes import route
+from amiro.ros2.types import RosbagsTypes
+from amiro.scenarios.hydration import HydrationOptions, scenario_config
+from amiro.system import SystemConfig
+
+HEAD_TOPICS = {OBSERVATIONS_TOPIC, SKELETONS_TOPIC, "/camera/camera_info", "/joint_states"}
+
+
+def _edge(cfg: SystemConfig) -> tuple[Runtime, dict[str, Any]]:
+    runtime = Runtime(SimClock(), seed=1)
+    parts = build_edge_role(runtime, "edge", NodeConfig(role="edge"), cfg)
+    engine = runtime.node("behavior")
+    assert isinstance(engine, BehaviorEngine)
+    return runtime, {**engine.modules, "summary": parts.summary()}
+
+
+def test_the_edge_runs_the_real_modules_by_default() -> None:
+    runtime, modules = _edge(scenario_config(HydrationOptions(seed=1)))
+    assert isinstance(modules["perception"], SimPeopleFinder)
+    assert isinstance(modules["activity"], SkeletonActivityRecognizer)
+    summary = modules["summary"]
+    assert summary["perception"] == "sim-detector" and summary["activity"] == "onnx"
+    assert summary["people_estimates"] == 0
+    assert set(runtime.nodes) >= {"fall_monitor", "notifications"}
+
+
+def test_oracles_run_on_the_edge_only_when_configured() -> None:
+    cfg = SystemConfig.model_validate(
+        {"perception": {"backend": "oracle"}, "activity": {"backend": "oracle"}}
+    )
+    _, modules = _edge(cfg)
+    assert isinstance(modules["perception"], OraclePeopleFinder)
+    assert isinstance(modules["activity"], OracleActivityRecognizer)
+    assert modules["summary"]["perception"] == "oracle"
+
+
+def test_the_robot_publishes_and_the_edge_hears_what_the_modules_read() -> None:
+    assert set(DEFAULT_PUBLISH["sim"]) >= HEAD_TOPICS
+    assert set(DEFAULT_SUBSCRIBE["edge"]) >= HEAD_TOPICS
+
+
+def test_a_skeleton_crosses_as_json_with_its_untracked_joints() -> None:
+    types = RosbagsTypes()
+    codec = route(SKELETONS_TOPIC).codec
+    joints = np.random.default_rng(0).normal(size=(25, 3))
+    tracked = np.ones(25, dtype=bool)
+    tracked[[3, 7]] = False
+    sent = Skeleton(Header(4.25, "camera_level"), 1, joints, tracked)
+    raw = types.store.serialize_cdr(codec.encode(types, sent, 5.0), codec.ros_type)
+    got = codec.decode(types.store.deserialize_cdr(raw, codec.ros_type))
+    assert got.header == sent.header and got.body_id == 1
+    assert np.array_equal(got.tracked, tracked)
+    assert np.allclose(got.joints[tracked], joints[tracked], atol=1e-5)
+
+
+@pytest.mark.parametrize(
+    "data",
+    ['{"stamp": 1}', "[1, 2]", '{"stamp": 1, "frame_id": "", "body_id": 0, '
+     '"joints": [0, 0, 0], "tracked": [true]}'],
+)  # fmt: skip
+def test_a_malformed_skeleton_is_rejected_with_value_error(data: str) -> None:
+    types = RosbagsTypes()
+    with pytest.raises(ValueError):
+        route(SKELETONS_TOPIC).codec.decode(types.make("std_msgs/msg/String", data=data))
