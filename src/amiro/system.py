@@ -32,7 +32,7 @@ from amiro.core.gridmap import load_map
 from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
 from amiro.dialogue.config import DialogueConfig
-from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.profiles import household_voices
 from amiro.dialogue.stack import Dialogue, build_dialogue
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.config import EnvironmentConfig
@@ -247,7 +247,7 @@ def _build_on_sim(cfg: SystemConfig, runtime: Runtime) -> System:
     initial_pose = None if cfg.navigation.start_place is None else sim.robot.true_pose
     navigation = _add_navigation(runtime, cfg, sim.world, initial_pose)
     senses = build_senses(runtime, cfg, sim, partial(SkeletonCamera, sim), lambda: navigation.pose)
-    return _assemble(cfg, runtime, sim, None, sim.world, navigation, senses)
+    return _assemble(cfg, runtime, sim, sim.world, navigation, senses)
 
 
 def _build_on_robot(cfg: SystemConfig, runtime: Runtime) -> System:
@@ -255,6 +255,11 @@ def _build_on_robot(cfg: SystemConfig, runtime: Runtime) -> System:
     ``navigation.start_place``, and perception and activity on its camera."""
     from amiro.perception.camera_stack import build_camera_modules
 
+    if cfg.robot.adapter == "naoqi":
+        raise ConfigError(
+            "robot.adapter: naoqi alone has no laser or camera for navigation and perception: "
+            "use adapter ros2 (Pepper's naoqi_driver2) with naoqi.handles beside it"
+        )
     if cfg.perception.backend != "camera":
         raise ConfigError(
             f"perception.backend: {cfg.perception.backend} reads the simulator; a real robot "
@@ -265,11 +270,9 @@ def _build_on_robot(cfg: SystemConfig, runtime: Runtime) -> System:
     world = World.load(home_path(cfg), cfg.sim.resolution)
     navigation = _add_navigation(runtime, cfg, world, None)
     built = build_camera_modules(runtime, cfg, lambda: navigation.pose)
-    robot = build_robot(runtime, cfg.robot)  # last: connects only once the config is sound
-    system = _assemble(
-        cfg, runtime, None, robot, world, navigation, Senses(built.people, built.activity)
-    )
+    system = _assemble(cfg, runtime, None, world, navigation, Senses(built.people, built.activity))
     system.camera_people = built.people
+    system.robot = build_robot(runtime, cfg.robot)  # last: connects once the config is sound
     return system
 
 
@@ -288,7 +291,6 @@ def _assemble(
     cfg: SystemConfig,
     runtime: Runtime,
     sim: Simulation | None,
-    robot: RealRobot | None,
     world: World,
     navigation: MoveToNode,
     senses: Senses,
@@ -309,16 +311,14 @@ def _assemble(
     rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
     environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     sources = environment_sources(runtime, environment, rooms)
-    voices = {
-        r.name: SpeakerProfile.model_validate({"lang": r.language}) for r in cfg.sim.residents
-    }
+    voices = household_voices({r.name: r.language for r in cfg.sim.residents})
     dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=layer.submit, sources=sources)
     modules.update({"speech": dialogue.speech, "nlu": dialogue.nlu})
     return System(
         cfg,
         runtime,
         sim,
-        robot,
+        None,  # a real robot's adapters are added last, once everything else is built
         world,
         navigation,
         layer.engine,

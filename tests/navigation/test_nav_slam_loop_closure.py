@@ -36,6 +36,9 @@ def test_loop_closure_brings_the_trajectory_within_a_decimetre(
     assert res["loop_closures"] > 10
     assert res["ate_rmse_m"] < 0.1
     assert res["odom_ate_rmse_m"] > 1.0
+    # the map's size: 0.993-0.996 over seeds 0-3 (a length bias loop closure cannot see)
+    assert abs(res["scale_to_reference"] - 1.0) < 0.01
+    assert res["similarity_ate_m"] <= res["ate_rmse_m"]
     rows = (out / "trajectory.csv").read_text().splitlines()
     assert rows[0] == "timestamp,x,y,theta" and len(rows) == res["scans"] + 1
     assert (out / "map.pgm").is_file()

@@ -44,6 +44,10 @@ def test_serve_refuses_a_real_robot_with_the_simulators_perception(
         ({"navigation": {"localization": "oracle"}}, "oracle is the simulator's true pose"),
         ({"home": "/nowhere/home.yaml"}, "/nowhere/home.yaml"),
         ({"navigation": {"start_place": "garage"}}, "no place named 'garage'"),
+        (
+            {"robot": {"adapter": "naoqi", "naoqi": {"url": "tcp://127.0.0.1:1"}}},
+            "naoqi alone has no laser or camera",
+        ),
     ],
 )
 def test_real_robot_configs_that_cannot_run_are_refused(

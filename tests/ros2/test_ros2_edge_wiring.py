@@ -14,10 +14,13 @@ from amiro.behavior.engine import BehaviorEngine
 from amiro.core.clock import SimClock
 from amiro.core.messages import Header, Skeleton
 from amiro.core.runtime import Runtime
+from amiro.dialogue.oracle import OracleUnderstanding
+from amiro.dialogue.understanding import Nlu
 from amiro.perception.oracle import OraclePeopleFinder
 from amiro.perception.stack import SimPeopleFinder
 from amiro.ros2.boundary import OBSERVATIONS_TOPIC, SKELETONS_TOPIC
 from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
+from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding
 from amiro.ros2.roles import build_edge_role
 from amiro.ros2.routes import route
 from amiro.ros2.types import RosbagsTypes
@@ -43,6 +46,16 @@ def test_the_edge_runs_the_real_modules_by_default() -> None:
     assert summary["perception"] == "sim-detector" and summary["activity"] == "onnx"
     assert summary["people_estimates"] == 0
     assert set(runtime.nodes) >= {"fall_monitor", "notifications"}
+    assert isinstance(modules["nlu"], Nlu)  # replies understood by the household's NLU
+
+
+def test_listen_asks_the_cloud_when_it_serves_understanding() -> None:
+    runtime = Runtime(SimClock(), seed=1)
+    node = NodeConfig(role="edge", call_services=(UNDERSTAND_SERVICE,))
+    build_edge_role(runtime, "edge", node, scenario_config(HydrationOptions(seed=1)))
+    engine = runtime.node("behavior")
+    assert isinstance(engine, BehaviorEngine)
+    assert isinstance(engine.modules["nlu"], RemoteUnderstanding)
 
 
 def test_oracles_run_on_the_edge_only_when_configured() -> None:
@@ -53,6 +66,8 @@ def test_oracles_run_on_the_edge_only_when_configured() -> None:
     assert isinstance(modules["perception"], OraclePeopleFinder)
     assert isinstance(modules["activity"], OracleActivityRecognizer)
     assert modules["summary"]["perception"] == "oracle"
+    oracle_nlu = SystemConfig.model_validate({"dialogue": {"nlu": "oracle"}})
+    assert isinstance(_edge(oracle_nlu)[1]["nlu"], OracleUnderstanding)
 
 
 def test_the_robot_publishes_and_the_edge_hears_what_the_modules_read() -> None:

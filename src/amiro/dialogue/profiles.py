@@ -3,6 +3,7 @@ voice and audio settings, so one household can mix languages and voices."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Literal
 
 from pydantic import Field
@@ -21,3 +22,8 @@ class SpeakerProfile(Section):
 def language_of(profiles: dict[str, SpeakerProfile], speaker: str | None, fallback: str) -> str:
     profile = profiles.get(speaker or "")
     return profile.lang if profile is not None else fallback
+
+
+def household_voices(languages: Mapping[str, str]) -> dict[str, SpeakerProfile]:
+    """A profile per resident (name -> language), for residents without a configured one."""
+    return {name: SpeakerProfile.model_validate({"lang": lang}) for name, lang in languages.items()}

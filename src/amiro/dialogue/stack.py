@@ -55,6 +55,21 @@ def make_recognizer(
     )
 
 
+def build_understanding(
+    cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
+) -> tuple[Nlu, Understanding]:
+    """The household's NLU, and what Listen tasks understand replies with: the NLU on the
+    heard text, the NLU behind simulated audio and the ASR (``asr.sim_audio``), or the
+    oracle when configured."""
+    nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
+    if cfg.nlu == "oracle":
+        return nlu, OracleUnderstanding()
+    if cfg.asr.sim_audio:
+        recognizer = make_recognizer(cfg, grammar="answers")
+        return nlu, AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
+    return nlu, nlu
+
+
 def build_dialogue(
     runtime: Runtime,
     cfg: DialogueConfig,
@@ -65,13 +80,7 @@ def build_dialogue(
     """Speech output, understanding for Listen, and the dialogue manager node (added to the
     runtime).  ``submit(kind, payload)`` hands behaviour requests (``go_to``) to the engine."""
     profiles = {**cfg.profiles, **(profiles or {})}
-    nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
-    understanding: Understanding = nlu
-    if cfg.nlu == "oracle":
-        understanding = OracleUnderstanding()
-    elif cfg.asr.sim_audio:
-        recognizer = make_recognizer(cfg, grammar="answers")
-        understanding = AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
+    nlu, understanding = build_understanding(cfg, profiles)
     manager = DialogueManager(nlu, shipped_domain(), Actions(sources or offline_sources(), submit))
     node = runtime.add(DialogueNode(manager, profiles))
     tts = None

@@ -17,7 +17,7 @@ from amiro.core.messages import SpeechRequest
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
 from amiro.dialogue.output import SAY_TOPIC
-from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.profiles import household_voices
 from amiro.dialogue.stack import Dialogue, build_dialogue
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.dialogue_sources import environment_sources
@@ -106,9 +106,7 @@ def add_cloud_services(
         services.requests = runtime.add(BehaviorRequests())
         say = runtime.bus.publisher(SAY_TOPIC, SpeechRequest)
         services.behaviors = DialogueBehaviors(services.requests, say)
-    voices = {
-        r.name: SpeakerProfile.model_validate({"lang": r.language}) for r in cfg.sim.residents
-    }
+    voices = household_voices({r.name: r.language for r in cfg.sim.residents})
     sources = None if environment is None else environment_sources(runtime, environment, rooms)
     services.dialogue = build_dialogue(
         runtime, cfg.dialogue, voices, submit=services.behaviors, sources=sources

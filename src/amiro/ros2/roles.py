@@ -15,9 +15,10 @@ from amiro.core.gridmap import load_map
 from amiro.core.messages import OccupancyGrid
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
-from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import Understanding
+from amiro.dialogue.profiles import household_voices
+from amiro.dialogue.stack import build_understanding
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToNode
@@ -116,10 +117,11 @@ def build_edge_role(
         lambda: navigation.pose,
     )
     senses = build_senses(runtime, cfg, feed, lambda _rng: feed, feed.robot_pose)
+    residents = household_voices({r.name: r.language for r in cfg.sim.residents})
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
         if UNDERSTAND_SERVICE in node.call_services
-        else OracleUnderstanding()
+        else build_understanding(cfg.dialogue, residents)[1]
     )
     modules = {
         "clock": runtime.clock,

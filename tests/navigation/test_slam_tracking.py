@@ -1,0 +1,78 @@
+"""Front-end safeguards of graph SLAM: maps that give way to sharper views, and matches that
+may not stray from the odometry guess."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from amiro.core.gridmap import OCCUPIED, GridMap
+from amiro.core.messages import Pose2D
+from amiro.navigation.graph_slam import GraphSlamParams, tracking_params
+from amiro.navigation.occupancy import LogOddsGrid
+from amiro.navigation.submaps import SubmapFrontEnd
+from amiro.sim.lidar import Lidar
+
+
+def _crossings_to_free(clamp: float) -> int:
+    """Beams that must cross a cell hit 20 times before it reads free."""
+    grid = LogOddsGrid(3.0, 2.0, 0.05, (0.0, 0.0), clamp=clamp)
+    here = np.array([1.52]), np.array([1.02])
+    beyond = np.array([2.52]), np.array([1.02])
+    for _ in range(20):
+        grid.integrate(0.12, 1.02, *here)
+    row, col = round(1.02 / 0.05 - 0.5), round(1.52 / 0.05 - 0.5)
+    for n in range(1, 50):
+        grid.integrate(0.12, 1.02, *beyond)
+        if grid.logodds[row, col] < 0.0:
+            return n
+    return 50
+
+
+def test_a_low_clamp_lets_closer_views_redraw_a_wall() -> None:
+    assert _crossings_to_free(2.0) <= 6
+    assert _crossings_to_free(6.0) >= 15
+
+
+def test_graph_slam_tracks_with_the_low_clamp_and_the_gate() -> None:
+    slam = GraphSlamParams().slam
+    assert slam == tracking_params()
+    assert slam.clamp <= 2.0 and slam.max_correction_m < 0.2
+
+
+def _room() -> GridMap:
+    """A 6 x 4 m room with a box and a pillar, so a scan fixes the pose in every direction."""
+    data = np.zeros((80, 120), np.int8)
+    data[:2, :] = data[-2:, :] = data[:, :2] = data[:, -2:] = OCCUPIED
+    data[50:62, 80:100] = OCCUPIED
+    data[15:20, 30:35] = OCCUPIED
+    return GridMap(data, 0.05)
+
+
+def _track_a_false_jump(max_correction_m: float) -> tuple[Pose2D, SubmapFrontEnd]:
+    """Two scans from the same place while odometry claims a 0.2 m step forward."""
+    lidar, room = Lidar(), _room()
+    params = dataclasses.replace(tracking_params(), max_correction_m=max_correction_m)
+    front = SubmapFrontEnd(params)
+    true = Pose2D(2.0, 2.0, 0.3)
+    ranges = lidar.true_ranges(room, true)
+    ok = np.isfinite(ranges)
+    px = ranges[ok] * np.cos(lidar.angles[ok])
+    py = ranges[ok] * np.sin(lidar.angles[ok])
+    front.track(px, py, Pose2D())
+    front.insert(px, py, keyframe=0)
+    return front.track(px, py, Pose2D(0.2, 0.0, 0.0)), front
+
+
+def test_the_matcher_alone_undoes_the_false_jump() -> None:
+    pose, front = _track_a_false_jump(math.inf)
+    assert math.hypot(pose.x, pose.y) < 0.03
+    assert front.refused == 0
+
+
+def test_a_match_far_from_the_odometry_guess_is_refused() -> None:
+    pose, front = _track_a_false_jump(0.08)
+    assert abs(pose.x - 0.2) < 1e-9 and abs(pose.y) < 1e-9
+    assert front.refused == 1
