@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import time
 from typing import Any
 
 from amiro.core.config import ConfigError
@@ -71,5 +72,14 @@ class NaoqiSession:
         self._pending = running
         return len(running)
 
-    def close(self) -> None:
+    def close(self, grace_s: float = 2.0) -> None:
+        """Disconnect once the calls still running have finished (at most ``grace_s``), so
+        the last commands, such as stopping the base, reach the robot."""
+        deadline = time.monotonic() + grace_s
+        for _, future in self._pending:
+            left_ms = int((deadline - time.monotonic()) * 1000)
+            if left_ms <= 0:
+                break
+            future.wait(left_ms)
+        self.reap()
         self.session.close()
