@@ -237,3 +237,29 @@ def test_blocked_living_door_reroutes_through_the_kitchen() -> None:
     assert handle.result.travelled_m > direct.result.travelled_m + 4.0
     assert len(rig.paths) >= 2  # re-planned once the lidar saw the box
     assert elapsed < 90.0
+
+
+def test_a_goal_sent_before_the_first_pose_waits_for_it() -> None:
+    rt = Runtime(SimClock(), seed=3)
+    sim = build_sim(rt, SimConfig())
+    places = {name: sim.world.place(name) for name in sim.world.home.places}
+    nav = rt.add(build_navigation(_map(), places, CFG))
+    rt.start()
+    assert nav.pose is None
+    handle = rt.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place="hallway"))
+    assert rt.spin_until(lambda: handle.done, 120.0)
+    assert handle.status is GoalStatus.SUCCEEDED
+    assert sim.robot.true_pose.distance_to(sim.world.place("hallway")) < 0.35
+
+
+def test_without_any_pose_the_goal_ends_no_pose_after_the_wait() -> None:
+    rt = Runtime(SimClock(), seed=3)
+    places = {"dock": Pose2D(1.0, 1.0), "hallway": Pose2D(2.0, 4.2)}
+    nav = rt.add(build_navigation(_map(), places, CFG))  # no simulator: no pose ever
+    rt.start()
+    handle = rt.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place="hallway"))
+    rt.spin_for(nav.pose_wait_s - 0.5)
+    assert not handle.done
+    rt.spin_for(1.0)
+    assert handle.status is GoalStatus.ABORTED and handle.result is not None
+    assert handle.result.reason == "no_pose"

@@ -1,6 +1,7 @@
 """The dashboard in the cloud process of a three-process deployment (sim, edge, cloud over
-ROS 2 on loopback): an HTTP client logs in, sees the robot's pose and behaviour events
-update, and its commands (the task form, a typed "go to the kitchen") run on the edge."""
+ROS 2 on loopback): an HTTP client logs in, sees the robot's pose, the people the edge
+tracks and behaviour events update, and its commands (the task form, a typed "go to the
+kitchen") run on the edge."""
 
 from __future__ import annotations
 
@@ -107,6 +108,12 @@ def test_the_cloud_dashboard_drives_the_edge(tmp_path: Path, domain_id: int) -> 
         assert _until(lambda: _finished(state(), "web_moveto#1"), 120) == "completed"
         in_living_room = state()["robot"]
 
+        # The edge's perception finds Maria; the dashboard shows her where it tracks her.
+        res = client.post("/api/tasks", json={"type": "Search", "params": {"person": "maria"}})
+        assert res.status_code == 200
+        maria = _until(lambda: [p for p in state()["people"] if p["name"] == "maria"], 120)
+        assert _until(lambda: _finished(state(), "web_search#1"), 120) == "completed"
+
         # A typed command in the cloud's chat: the edge runs go_to, the outcome comes back.
         reply = client.post("/api/chat", json={"text": "go to the kitchen", "user": "maria"})
         assert reply.json()["reply"] == "I am going to kitchen."
@@ -122,6 +129,8 @@ def test_the_cloud_dashboard_drives_the_edge(tmp_path: Path, domain_id: int) -> 
     assert world.room_at(start["x"], start["y"]) == "hallway"
     assert world.room_at(in_living_room["x"], in_living_room["y"]) == "living_room"
     assert world.room_at(final["x"], final["y"]) == "kitchen"
+    assert maria and set(maria[0]) == {"name", "x", "y", "activity"}
+    assert world.room_at(maria[0]["x"], maria[0]["y"]) is not None  # a place in the home
     sim = json.loads(launcher.report_path("sim").read_text())
     assert world.room_at(sim["pose"][0], sim["pose"][1]) == "kitchen"  # the robot itself
     cloud = json.loads(launcher.report_path("cloud").read_text())
@@ -130,7 +139,7 @@ def test_the_cloud_dashboard_drives_the_edge(tmp_path: Path, domain_id: int) -> 
     assert requests["go_to"]["outcome"] == "completed" and requests["go_to"]["run"] == "go_to#1"
     assert [a["text"] for a in cloud["dialogue_outcomes"]] == [said]
     edge = json.loads(launcher.report_path("edge").read_text())
-    assert [r["id"] for r in edge["runs"]] == ["web_moveto#1", "go_to#1"]
+    assert [r["id"] for r in edge["runs"]] == ["web_moveto#1", "web_search#1", "go_to#1"]
     assert all(r["outcome"] == "completed" for r in edge["runs"])
     # The cloud (dashboard, dialogue) stops cleanly; the edge's exit is the deployment tests'.
     assert "cloud" not in launcher.unclean_exits(), launcher.unclean_exits()

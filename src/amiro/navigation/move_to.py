@@ -67,6 +67,7 @@ class _Active:
     progress_time: float = 0.0
     recoveries: int = 0
     backoff_until: float = -1.0
+    planned: bool = False
 
 
 class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
@@ -82,6 +83,7 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         stuck_after_s: float = 6.0,
         max_recoveries: int = 2,
         dwa: DwaParams | None = None,
+        pose_wait_s: float = 5.0,
     ) -> None:
         super().__init__("navigation")
         self.costmap = costmap
@@ -97,6 +99,7 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         self.period = 1.0 / control_hz
         self.stuck_after_s = stuck_after_s
         self.max_recoveries = max_recoveries
+        self.pose_wait_s = pose_wait_s  # a goal may come before localisation's first pose
         self.pose: Pose2D | None = None
         self.active: _Active | None = None
         self.emergency_stop = False
@@ -140,10 +143,9 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
         if self.active is not None:
             self.active.handle.abort(MoveToResult(False, "preempted_by_new_goal"))
         self.active = _Active(handle, PathFollower(self.limits), progress_time=self.now())
-        if self.pose is None:
-            self._finish(False, "no_pose")
-            return
-        self._replan(self.active)
+        if self.pose is not None:
+            self._replan(self.active)
+        # else the control loop plans at the first pose, or ends "no_pose" after pose_wait_s
 
     def canceled_result(
         self, handle: GoalHandle[MoveToGoal, MoveToFeedback, MoveToResult]
@@ -173,6 +175,7 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
             self._finish(False, "unreachable")
             return
         active.follower.set_path(path)
+        active.planned = True
         self.path_pub.publish(Path(Header(self.now(), "map"), tuple(path)))
 
     def _path_blocked(self, path: list[Pose2D]) -> bool:
@@ -189,8 +192,17 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
 
     def _control(self) -> None:
         active = self.active
-        if active is None or self.pose is None:
+        if active is None:
             return
+        if self.pose is None:
+            if self.now() - active.progress_time > self.pose_wait_s:
+                self._finish(False, "no_pose")
+            return
+        if not active.planned:
+            self._replan(active)
+            if self.active is not active:
+                return
+            active.progress_time = self.now()
         pose = self.pose
         if active.last_pose is not None:
             active.travelled += active.last_pose.distance_to(pose)

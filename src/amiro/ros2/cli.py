@@ -113,6 +113,8 @@ def _node(args: argparse.Namespace) -> int:
         data, source = {"role": args.name}, f"amiro node {args.name}"
     if not isinstance(data, dict):
         raise ConfigError(f"{source}: expected a mapping at the top level")
+    if args.config is not None and isinstance(data.get("system"), str):
+        data["system"] = str(args.config.parent / data["system"])  # beside the node's file
     node = parse(NodeConfig, _with_domain(data, args.domain_id), source)
     return _finish(args, run_process(args.name, node, args.seed, args.events))
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from amiro.core.config import Section
 from amiro.ros2.env import MAX_DOMAIN_ID
@@ -44,6 +44,7 @@ DEFAULT_PUBLISH: dict[str, tuple[str, ...]] = {
         "/amiro/events",
         "/amiro/notifications/ack",
         "/amiro/heartbeat",
+        "/amiro/people",  # the people perception tracks, for the cloud's dashboard
     ),
     "cloud": ("/amiro/notifications", "/amiro/env/sensors"),
 }
@@ -61,8 +62,21 @@ DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
         "/amiro/speech/heard",
         "/amiro/notifications",
     ),
-    "cloud": ("/amiro/events", "/amiro/notifications/ack", "/amiro/heartbeat"),
+    "cloud": ("/amiro/events", "/amiro/notifications/ack", "/amiro/heartbeat", "/amiro/people"),
 }
+
+# An edge driving a real robot: the robot adapter (``robot.adapter: ros2`` in its system
+# config) carries the driver's topics (scan, odometry, camera, joints, velocity, head,
+# speech) with the profile's names and limits, so the bridge leaves them alone.  /tf is not
+# exported either: it would re-send the driver's own odom frame beside map -> odom.
+ROBOT_EDGE_PUBLISH = (
+    "/amiro/display",
+    "/amiro/events",
+    "/amiro/notifications/ack",
+    "/amiro/heartbeat",
+    "/amiro/people",
+)
+ROBOT_EDGE_SUBSCRIBE = ("/amiro/speech/heard", "/amiro/notifications")
 
 
 # What a sim process with a rendered camera exports besides its defaults (the robot port's).
@@ -86,10 +100,17 @@ class RosSection(Section):
 class NodeConfig(Section):
     role: Role
     ros: RosSection = Field(default_factory=RosSection)
+    clock: Literal["follow", "wall"] = Field(
+        default="follow",
+        description="edge/cloud: follow the robot process's /clock (the simulator's time), "
+        "or run on wall time (a real robot's driver publishes no /clock)",
+    )
     scenario: Literal["hydration"] | None = Field(
         default="hydration", description="the household and triggers to load"
     )
-    system: Path | None = Field(default=None, description="SystemConfig YAML for the scenario")
+    system: Path | None = Field(
+        default=None, description="SystemConfig YAML (amiro node: relative to the node's file)"
+    )
     speed: float | None = Field(default=1.0, gt=0, description="sim: sim seconds per real second")
     wait_for: tuple[str, ...] = Field(
         default=(), description="sim: ROS node names to wait for before time starts"
@@ -132,20 +153,41 @@ class NodeConfig(Section):
         description="sim: publish rendered RGB, depth and CameraInfo as a real robot's camera "
         "would (``amiro sim --ros2`` turns it on)",
     )
+    ledger_path: Path | None = Field(
+        default=None,
+        description="cloud: keep the pending notifications and their checkpoints in this JSON "
+        "file, so a restarted cloud re-sends them (relative: to the directory of the "
+        "process's --events file, the launcher's log dir; else the working directory)",
+    )
     stop_after_acks: int | None = Field(default=None, ge=1)
     duration_s: float | None = Field(default=None, gt=0)
 
-    def topics_out(self) -> tuple[str, ...]:
-        base = DEFAULT_PUBLISH[self.role] if self.publish is None else self.publish
+    @model_validator(mode="after")
+    def _sim_owns_time(self) -> NodeConfig:
+        if self.role == "sim" and self.clock == "wall":
+            raise ValueError("clock: wall is for edge and cloud; the sim role owns simulated time")
+        return self
+
+    def topics_out(self, robot: bool = False) -> tuple[str, ...]:
+        """``robot``: an edge whose robot adapter carries the driver's topics itself."""
+        defaults = ROBOT_EDGE_PUBLISH if robot else DEFAULT_PUBLISH[self.role]
+        base = defaults if self.publish is None else self.publish
         rendered = CAMERA_TOPICS if self.role == "sim" and self.camera is not None else ()
         return _merged(base, (*self.publish_also, *rendered))
 
-    def topics_in(self) -> tuple[str, ...]:
-        base = DEFAULT_SUBSCRIBE[self.role] if self.subscribe is None else self.subscribe
+    def topics_in(self, robot: bool = False) -> tuple[str, ...]:
+        defaults = ROBOT_EDGE_SUBSCRIBE if robot else DEFAULT_SUBSCRIBE[self.role]
+        base = defaults if self.subscribe is None else self.subscribe
         return _merged(base, self.subscribe_also)
 
     def ros_node_name(self, process: str) -> str:
         return self.ros.node_name or f"amiro_{process}"
+
+    def with_ledger_base(self, base: Path) -> NodeConfig:
+        """This config with a relative ``ledger_path`` taken from ``base``."""
+        if self.ledger_path is None or self.ledger_path.is_absolute():
+            return self
+        return self.model_copy(update={"ledger_path": base / self.ledger_path})
 
 
 def _merged(base: tuple[str, ...], extra: tuple[str, ...]) -> tuple[str, ...]:

@@ -6,7 +6,9 @@ one stops and comes back.  The :class:`NotificationLedger` keeps each notificati
 is acknowledged, with the latest checkpoint of the behaviour answering it (the edge's
 ``behavior_checkpoint`` events), and re-sends the pending ones with their checkpoints when
 the edge comes back: the restarted edge resumes each behaviour at the task that was running
-(at-least-once delivery; at-least-once execution of that one task).
+(at-least-once delivery; at-least-once execution of that one task).  With a
+:class:`~amiro.ros2.ledger_store.LedgerStore` the ledger also outlives the cloud: a restarted
+cloud loads it and re-sends the pending notifications when it first hears the edge.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
 from amiro.core.node import Node
 from amiro.environment.topics import NOTIFICATIONS_TOPIC
 from amiro.ros2.boundary import HEARTBEAT_TOPIC, Heartbeat
+from amiro.ros2.ledger_store import LedgerFile, LedgerStore
 
 
 class HeartbeatNode(Node):
@@ -89,17 +92,28 @@ class Watchdog(Node):
 
 class NotificationLedger(Node):
     """Remembers unacknowledged notifications and their behaviours' latest checkpoints;
-    re-sends them, each with its checkpoint, when ``edge`` comes up (late) or back."""
+    re-sends them, each with its checkpoint, when ``edge`` comes up (late) or back;
+    ``store`` (optional) keeps them on disk through every change."""
 
-    def __init__(self, edge: str = "edge", resend_delay_s: float = 1.0) -> None:
+    def __init__(
+        self, edge: str = "edge", resend_delay_s: float = 1.0, store: LedgerStore | None = None
+    ) -> None:
         super().__init__("redelivery")  # the environment's ledger is "notification_ledger"
         self.edge = edge
         self.resend_delay_s = resend_delay_s
+        self.store = store
         self.pending: dict[str, Notification] = {}
         self.checkpoints: dict[str, dict[str, Any]] = {}
         self.resent = 0
+        self.restored = 0  # pending notifications loaded from the store at start
 
     def on_start(self) -> None:
+        if self.store is not None:
+            saved = self.store.load()
+            self.pending, self.checkpoints = dict(saved.pending), dict(saved.checkpoints)
+            self.restored = len(self.pending)
+            if self.restored:
+                self.log.warning("restored %d pending notification(s)", self.restored)
         self.pub = self.create_publisher(NOTIFICATIONS_TOPIC, Notification)
         self.events = self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
         self.create_subscription(NOTIFICATIONS_TOPIC, Notification, self._on_note, depth=100)
@@ -107,11 +121,15 @@ class NotificationLedger(Node):
         self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=1000)
 
     def _on_note(self, note: Notification) -> None:
-        self.pending.setdefault(note.id, note)
+        if note.id not in self.pending:
+            self.pending[note.id] = note
+            self._save()
 
     def _on_ack(self, ack: Acknowledgement) -> None:
-        self.pending.pop(ack.id, None)
-        self.checkpoints.pop(ack.id, None)
+        if ack.id in self.pending:
+            self.pending.pop(ack.id)
+            self.checkpoints.pop(ack.id, None)
+            self._save()
 
     def _on_event(self, event: BehaviorEvent) -> None:
         if event.type == "behavior_checkpoint":
@@ -119,6 +137,7 @@ class NotificationLedger(Node):
             # Kept as sent: the edge that resumes from it validates it.
             if isinstance(ident, str) and ident in self.pending and isinstance(checkpoint, dict):
                 self.checkpoints[ident] = checkpoint
+                self._save()
         elif event.type in ("node_up", "node_back") and event.detail.get("node") == self.edge:
             # Up: what was raised before the edge listened (a slow start) was lost; back: a
             # restarted edge.  Give its subscriptions a moment to be discovered; a note it
@@ -137,3 +156,20 @@ class NotificationLedger(Node):
                 BehaviorEvent(self.now(), "notification_redelivered", detail=detail)
             )
             self.pub.publish(note if checkpoint is None else with_checkpoint(note, checkpoint))
+
+    def _save(self) -> None:
+        if self.store is not None:
+            self.store.save(LedgerFile(pending=self.pending, checkpoints=self.checkpoints))
+
+    def persistence(self) -> dict[str, Any]:
+        """For the process's report: the store's file and what happened to it, if any."""
+        if self.store is None:
+            return {}
+        return {
+            "ledger": {
+                "path": str(self.store.path),
+                "restored": self.restored,
+                "corrupt": self.store.corrupt,
+                "write_errors": self.store.write_errors,
+            }
+        }

@@ -1,7 +1,8 @@
 """One deployment process: its runtime, its role, the bridge, and a clean shutdown.
 
 The ``sim`` role owns time (a paced SimClock, published on ``/clock``) and waits for the
-processes named in ``wait_for`` before starting it; the other roles follow that clock.
+processes named in ``wait_for`` before starting it; the other roles follow that clock, or
+with ``clock: wall`` run on wall time beside a real robot's driver.
 SIGTERM and SIGINT stop the process cleanly at its next step: nodes stopped, rclpy shut
 down, report written.
 """
@@ -20,7 +21,7 @@ from typing import Any, TextIO
 
 from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.tasks.notify import ACK_TOPIC
-from amiro.core.clock import Clock, SimClock, wall_seconds
+from amiro.core.clock import Clock, SimClock, WallClock, wall_seconds
 from amiro.core.config import ConfigError, load
 from amiro.core.messages import Acknowledgement, BehaviorEvent
 from amiro.core.runtime import Runtime
@@ -31,6 +32,7 @@ from amiro.ros2.config import NodeConfig
 from amiro.ros2.context import RosContext
 from amiro.ros2.endpoint import WireEndpoint
 from amiro.ros2.interfaces import known_action, known_service
+from amiro.ros2.robot_edge import build_robot_edge
 from amiro.ros2.roles import BUILDERS
 from amiro.ros2.services import RemoteService, ServiceExporter
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
@@ -114,6 +116,8 @@ def run_process(
 ) -> dict[str, Any]:
     """Run one process until its stop condition or a signal; returns its report."""
     stop = StopRequest()
+    if events_path is not None:  # the launcher's log dir holds what a process leaves behind
+        node = node.with_ledger_base(events_path.parent)
     with _stop_on_signals(stop):
         return _run_process(process, node, seed, events_path, stop)
 
@@ -127,13 +131,16 @@ def _run_process(
     exported = [known_service(name) for name in node.serve_services]
     imported = [known_service(name) for name in node.call_services]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
-    clock: Clock = SimClock(speed=node.speed) if node.role == "sim" else FollowedClock(ros)
+    clock = _process_clock(node, ros)
     if isinstance(clock, FollowedClock):
         stop.clock = clock
         clock.stopping = stop.requested
     runtime = Runtime(clock, seed=seed)
+    robot = node.role == "edge" and cfg.robot.adapter != "sim"  # a real robot's adapters
     bridge = runtime.add(
-        Ros2Bridge(ros, node.topics_out(), node.topics_in(), node.remap, name="ros2_bridge")
+        Ros2Bridge(
+            ros, node.topics_out(robot), node.topics_in(robot), node.remap, name="ros2_bridge"
+        )
     )
     endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, spec)) for spec in served]
     endpoints += [
@@ -141,7 +148,7 @@ def _run_process(
     ]
     services: list[WireEndpoint] = [runtime.add(ServiceExporter(ros, s)) for s in exported]
     services += [runtime.add(RemoteService(ros, spec)) for spec in imported]
-    parts = BUILDERS[node.role](runtime, process, node, cfg)
+    parts = (build_robot_edge if robot else BUILDERS[node.role])(runtime, process, node, cfg)
     out = events_path.open("a", encoding="utf-8") if events_path is not None else None
     events = EventLog(runtime, out)
     started = wall_seconds()
@@ -152,6 +159,7 @@ def _run_process(
         if isinstance(clock, FollowedClock):
             clock.stopping = True
         runtime.stop()
+        parts.close()
         ros.close()
         if out is not None:
             out.close()
@@ -175,6 +183,12 @@ def _run_process(
     }
 
 
+def _process_clock(node: NodeConfig, ros: RosContext) -> Clock:
+    if node.role == "sim":
+        return SimClock(speed=node.speed)
+    return WallClock() if node.clock == "wall" else FollowedClock(ros)
+
+
 def _run(
     runtime: Runtime,
     ros: RosContext,
@@ -190,7 +204,7 @@ def _run(
             raise ConfigError(
                 f"no /clock within {node.wait_timeout_s:g} s: is the robot process up?"
             )
-    else:
+    elif node.role == "sim":
         runtime.add(ClockPublisher(ros))
         missing = ros.wait_for_nodes(
             list(node.wait_for), node.wait_timeout_s, cancelled=lambda: stop.requested
@@ -200,9 +214,10 @@ def _run(
     if stop.requested:
         return "stopped"
     runtime.start()
+    origin = runtime.clock.now() if isinstance(clock, WallClock) else 0.0  # sim time: from 0
     try:
         while not stop.requested:
-            if node.duration_s is not None and runtime.clock.now() >= node.duration_s:
+            if node.duration_s is not None and runtime.clock.now() - origin >= node.duration_s:
                 return "duration"
             if node.stop_after_acks is not None and len(events.acks) >= node.stop_after_acks:
                 runtime.spin_for(0.5)  # let the last events arrive

@@ -30,6 +30,8 @@ from amiro.ros2.cloud import add_cloud_services, pose_topic
 from amiro.ros2.config import NodeConfig
 from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding
 from amiro.ros2.health import HeartbeatNode, NotificationLedger, Watchdog
+from amiro.ros2.ledger_store import LedgerStore
+from amiro.ros2.people import TrackedPeoplePublisher, finder_tracker
 from amiro.ros2.sim_camera import SimCameraNode
 from amiro.ros2.tf import MapOdomNode, robot_frames
 from amiro.sim.camera import CameraParams
@@ -37,10 +39,12 @@ from amiro.sim.simulator import build_sim
 from amiro.sim.skeletons import SkeletonCamera
 from amiro.sim.world import World, default_home_path
 from amiro.system import (
+    BehaviorLayer,
     Senses,
     SystemConfig,
     build_behavior_layer,
     build_senses,
+    home_path,
     nav_map_path,
 )
 
@@ -64,9 +68,10 @@ class RoleParts:
     """What a role built, as far as the process needs to know: a summary for its report."""
 
     summary: Callable[[], dict[str, Any]]
+    close: Callable[[], None] = lambda: None  # after the runtime stops (a robot's adapters)
 
 
-def _navigation(runtime: Runtime, cfg: SystemConfig, world: World) -> MoveToNode:
+def add_navigation(runtime: Runtime, cfg: SystemConfig, world: World) -> MoveToNode:
     places = {name: world.place(name) for name in world.home.places}
     runtime.add(MapOdomNode(pose_topic(cfg)))  # map -> odom on /tf, where localisation runs
     return runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
@@ -77,7 +82,7 @@ def build_sim_role(
 ) -> RoleParts:
     sim = build_sim(runtime, cfg.sim)
     if MOVE_TO_ACTION in node.serve_actions:  # navigation next to the robot, driven remotely
-        _navigation(runtime, cfg, sim.world)
+        add_navigation(runtime, cfg, sim.world)
     (rng_skeletons,) = runtime.rng.spawn(1)
     rendered = node.camera is not None
     runtime.add(
@@ -108,7 +113,7 @@ def build_edge_role(
     navigation: MoveToNode | NavigationState = (
         NavigationState(runtime.bus, pose_topic(cfg))
         if MOVE_TO_ACTION in node.call_actions
-        else _navigation(runtime, cfg, world)
+        else add_navigation(runtime, cfg, world)
     )
     feed = HeadSensorsFeed(
         runtime.bus,
@@ -117,6 +122,32 @@ def build_edge_role(
         lambda: navigation.pose,
     )
     senses = build_senses(runtime, cfg, feed, lambda _rng: feed, feed.robot_pose)
+    tracker = finder_tracker(senses.perception)
+    if tracker is not None:  # the cloud's dashboard shows whom perception tracks
+        runtime.add(TrackedPeoplePublisher(tracker))
+    layer = edge_behaviors(runtime, process, node, cfg, world, navigation, senses)
+
+    def summary() -> dict[str, Any]:
+        return {
+            "runs": [{"id": r.id, "outcome": r.outcome} for r in layer.engine.runs.values()],
+            **senses_report(cfg, senses),
+            "received": dict(feed.received),
+        }
+
+    return RoleParts(summary)
+
+
+def edge_behaviors(
+    runtime: Runtime,
+    process: str,
+    node: NodeConfig,
+    cfg: SystemConfig,
+    world: World,
+    navigation: MoveToNode | NavigationState,
+    senses: Senses,
+) -> BehaviorLayer:
+    """The edge's behaviour engine on its modules, the behaviour action if served, and the
+    heartbeat: the same on the simulator's topics and on a real robot's adapters."""
     residents = household_voices({r.name: r.language for r in cfg.sim.residents})
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
@@ -136,15 +167,7 @@ def build_edge_role(
     if BEHAVIOR_ACTION in node.serve_actions:  # the cloud's dialogue and dashboard ask
         runtime.add(BehaviorActionServer(layer.engine, layer.handlers))
     runtime.add(HeartbeatNode(process, node.heartbeat_s))
-
-    def summary() -> dict[str, Any]:
-        return {
-            "runs": [{"id": r.id, "outcome": r.outcome} for r in layer.engine.runs.values()],
-            **senses_report(cfg, senses),
-            "received": dict(feed.received),
-        }
-
-    return RoleParts(summary)
+    return layer
 
 
 def senses_report(cfg: SystemConfig, senses: Senses) -> dict[str, Any]:
@@ -160,11 +183,12 @@ def senses_report(cfg: SystemConfig, senses: Senses) -> dict[str, Any]:
 def build_cloud_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
-    home = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution).home
+    home = World.load(home_path(cfg), cfg.sim.resolution).home
     env = cfg.environment
     sensors = runtime.add(SimulatedSensorsNode(list(home.rooms), env.sensors, env.home_id))
     rules = runtime.add(RulesNode(list(env.rules), env.home_id))
-    ledger = runtime.add(NotificationLedger())
+    store = None if node.ledger_path is None else LedgerStore(node.ledger_path)
+    ledger = runtime.add(NotificationLedger(store=store))
     watchdog = runtime.add(Watchdog(dict(node.watch)))
     services = add_cloud_services(runtime, node, cfg, home, sensors, rules)
 
@@ -172,6 +196,7 @@ def build_cloud_role(
         return {
             "pending_notifications": sorted(ledger.pending),
             "redelivered": ledger.resent,
+            **ledger.persistence(),
             "lost": {name: peer.lost for name, peer in watchdog.peers.items()},
             **services.summary(),
         }

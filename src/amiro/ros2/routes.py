@@ -20,6 +20,7 @@ from amiro.core.messages import (
     Notification,
     OccupancyGrid,
     Odometry,
+    People,
     Pose2D,
     PoseStamped,
     SensorReading,
@@ -38,6 +39,7 @@ from amiro.ros2.boundary import (
     Heartbeat,
 )
 from amiro.ros2.convert import STANDARD_CODECS, Codec, json_codec
+from amiro.ros2.people import PEOPLE_TOPIC
 
 
 @dataclass(frozen=True)
@@ -79,6 +81,7 @@ ROUTES: dict[str, Route] = {
         Route("/amiro/localization/pose", _standard(Pose2D), depth=1),
         Route(OBSERVATIONS_TOPIC, json_codec(CameraObservations), depth=1),
         Route(SKELETONS_TOPIC, _standard(Skeleton), depth=200),  # a person's history at once
+        Route(PEOPLE_TOPIC, json_codec(People), depth=1),  # the edge's tracks, for the dashboard
         # smart environment and deployment health
         Route("/amiro/env/sensors", json_codec(SensorReading), depth=100),
         Route("/amiro/notifications", json_codec(Notification), depth=100),

@@ -2,9 +2,9 @@
 
 :class:`RemoteRobot` implements :class:`~amiro.web.robot.RobotPort` from what crosses to
 the cloud: the pose estimate (the topic navigation publishes, as ``/amcl_pose`` would),
-the behaviour events of ``/amiro/events`` (running task and queue), and the dashboard's
-one-task behaviours go to the edge as ``/amiro/behavior/run`` goals.  People are not
-shown: only the edge's perception knows where they are.
+the people the edge tracks (``/amiro/people``), the behaviour events of ``/amiro/events``
+(running task and queue), and the dashboard's one-task behaviours go to the edge as
+``/amiro/behavior/run`` goals.
 """
 
 from __future__ import annotations
@@ -13,9 +13,10 @@ from typing import Any
 
 from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.task import make_task
-from amiro.core.messages import BehaviorEvent, Pose2D
+from amiro.core.messages import BehaviorEvent, People, Pose2D
 from amiro.core.node import Node
 from amiro.ros2.behaviors import BehaviorGoal, BehaviorRequests
+from amiro.ros2.people import PEOPLE_TOPIC, dashboard_people
 from amiro.sim.world import HomeSpec
 from amiro.web.robot import pose_dict
 
@@ -34,11 +35,13 @@ class RemoteRobot(Node):
         self.pose_topic = pose_topic
         self.requests = requests
         self.pose: Pose2D | None = None
+        self.people: People | None = None
         self.current: dict[str, Any] | None = None
         self.queued: dict[str, dict[str, Any]] = {}
 
     def on_start(self) -> None:
         self.create_subscription(self.pose_topic, Pose2D, self._on_pose, 1)
+        self.create_subscription(PEOPLE_TOPIC, People, self._on_people, 1)
         self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, 1000)
 
     @property
@@ -51,7 +54,7 @@ class RemoteRobot(Node):
     def state(self) -> dict[str, Any]:
         return {
             "robot": pose_dict(self.pose) if self.pose is not None else None,
-            "people": [],
+            "people": dashboard_people(self.people),
             "current": self.current,
             "queue": [q for q in self.queued.values() if q["graph"] != self._current_graph()],
         }
@@ -66,6 +69,9 @@ class RemoteRobot(Node):
 
     def _on_pose(self, pose: Pose2D) -> None:
         self.pose = pose
+
+    def _on_people(self, people: People) -> None:
+        self.people = people
 
     def _on_event(self, ev: BehaviorEvent) -> None:
         if ev.graph is None:
