@@ -5,14 +5,11 @@ HOG on the camera's pixels places the resident standing in front of it."""
 
 from __future__ import annotations
 
-import json
 import math
 import os
-import signal
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import yaml
@@ -21,6 +18,7 @@ from amiro.core.clock import WallClock
 from amiro.perception.onnx_standins import fixed_answer_model
 from amiro.ros2.env import ros_environment
 from amiro.system import SystemConfig, build_system
+from sim_driver import stop_sim
 
 MARIA = (6.0, 4.2)  # standing in the hallway, 4 m ahead of the robot parked at "hallway"
 HALLWAY = (2.0, 4.2)
@@ -56,14 +54,6 @@ def robot_config(tmp_path: Path, domain: int) -> SystemConfig:
             "sim": {"residents": RESIDENTS},  # the household's names and languages
         }
     )
-
-
-def stop_sim(sim: subprocess.Popen[str], tmp_path: Path) -> dict[str, Any]:
-    sim.send_signal(signal.SIGTERM)
-    _, err = sim.communicate(timeout=30)
-    assert sim.returncode == 0, err[-2000:]
-    report: dict[str, Any] = json.loads((tmp_path / "sim.json").read_text())
-    return report
 
 
 def test_whole_system_drives_and_sees_through_the_robots_topics(

@@ -8,7 +8,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -30,6 +29,7 @@ from amiro.ros2.context import RosContext
 from amiro.ros2.env import ros_environment
 from amiro.ros2.interfaces import known_action
 from amiro.ros2.launch import Launcher, load_deployment
+from sim_driver import stop_sim
 
 HALLWAY = (2.0, 4.2)  # the named place the robot is sent to (the shipped apartment's)
 
@@ -71,14 +71,6 @@ def _start_driver(tmp_path: Path, domain: int) -> subprocess.Popen[str]:
     )
 
 
-def _stop_driver(sim: subprocess.Popen[str], tmp_path: Path) -> dict[str, Any]:
-    sim.send_signal(signal.SIGTERM)
-    _, err = sim.communicate(timeout=30)
-    assert sim.returncode == 0, err[-2000:]
-    report: dict[str, Any] = json.loads((tmp_path / "sim.json").read_text())
-    return report
-
-
 def _ask_go_to(domain: int, place: str) -> Any:
     """What the cloud's dialogue or dashboard would do: ask the edge for ``go_to``."""
     runtime = Runtime(WallClock())
@@ -115,7 +107,7 @@ def test_edge_and_cloud_drive_a_ros2_robot_on_wall_time(tmp_path: Path, domain_i
         result = _ask_go_to(domain_id, "hallway")
     finally:
         launcher.stop()
-        driver = _stop_driver(sim, tmp_path)
+        driver = stop_sim(sim, tmp_path)
     assert launcher.unclean_exits() == {}
     assert result.ok and result.outcome == "completed"
     x, y, _ = driver["pose"]
