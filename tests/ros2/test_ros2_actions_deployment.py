@@ -3,7 +3,6 @@ edge, the cloud as usual; three OS processes over ROS 2 run hydration to its end
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
@@ -62,15 +61,11 @@ def test_hydration_completes_with_move_to_across_processes(tmp_path: Path, domai
     launcher = Launcher(
         load_deployment(_deployment(tmp_path)), tmp_path / "logs", domain_id=domain_id
     )
-    launcher.start()
-    try:
-        outcome = launcher.run()
-    finally:
-        launcher.stop()
+    outcome = launcher.run_all()
     assert outcome == "cloud finished"
-    sim = json.loads(launcher.report_path("sim").read_text())
-    edge = json.loads(launcher.report_path("edge").read_text())
-    cloud = json.loads(launcher.report_path("cloud").read_text())
+    sim = launcher.report("sim")
+    edge = launcher.report("edge")
+    cloud = launcher.report("cloud")
     served = sim["actions"][f"ros2_serve:{MOVE_TO_ACTION}"]
     called = edge["actions"][f"ros2_call:{MOVE_TO_ACTION}"]
     assert called["sent"] >= 1 and served["received"] >= 1 and served["sent"] > 0

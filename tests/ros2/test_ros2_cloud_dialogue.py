@@ -3,7 +3,6 @@ cloud's dialogue stack answers, over ROS 2, with sim, edge and cloud as three OS
 
 from __future__ import annotations
 
-import json
 from importlib import resources
 from pathlib import Path
 
@@ -43,14 +42,10 @@ def test_listen_understands_in_the_cloud_and_hydration_completes(
     tmp_path: Path, domain_id: int
 ) -> None:
     launcher = Launcher(load_deployment(DEPLOYMENT), tmp_path, domain_id=domain_id)
-    launcher.start()
-    try:
-        outcome = launcher.run()
-    finally:
-        launcher.stop()
+    outcome = launcher.run_all()
     assert outcome == "cloud finished"
-    edge = json.loads(launcher.report_path("edge").read_text())
-    cloud = json.loads(launcher.report_path("cloud").read_text())
+    edge = launcher.report("edge")
+    cloud = launcher.report("cloud")
     served = cloud["services"][f"ros2_serve:{UNDERSTAND_SERVICE}"]
     called = edge["services"][f"ros2_call:{UNDERSTAND_SERVICE}"]
     assert served["received"] >= 1 and served["sent"] == served["received"]

@@ -5,7 +5,6 @@ kitchen") run on the edge."""
 
 from __future__ import annotations
 
-import json
 import socket
 import time
 from collections.abc import Callable
@@ -131,14 +130,14 @@ def test_the_cloud_dashboard_drives_the_edge(tmp_path: Path, domain_id: int) -> 
     assert world.room_at(final["x"], final["y"]) == "kitchen"
     assert maria and set(maria[0]) == {"name", "x", "y", "activity"}
     assert world.room_at(maria[0]["x"], maria[0]["y"]) is not None  # a place in the home
-    sim = json.loads(launcher.report_path("sim").read_text())
+    sim = launcher.report("sim")
     assert world.room_at(sim["pose"][0], sim["pose"][1]) == "kitchen"  # the robot itself
-    cloud = json.loads(launcher.report_path("cloud").read_text())
+    cloud = launcher.report("cloud")
     requests = {r["kind"]: r for r in cloud["behavior_requests"]}
     assert requests["MoveTo"]["outcome"] == "completed"
     assert requests["go_to"]["outcome"] == "completed" and requests["go_to"]["run"] == "go_to#1"
     assert [a["text"] for a in cloud["dialogue_outcomes"]] == [said]
-    edge = json.loads(launcher.report_path("edge").read_text())
+    edge = launcher.report("edge")
     assert [r["id"] for r in edge["runs"]] == ["web_moveto#1", "web_search#1", "go_to#1"]
     assert all(r["outcome"] == "completed" for r in edge["runs"])
     # The cloud (dashboard, dialogue) stops cleanly; the edge's exit is the deployment tests'.

@@ -91,5 +91,5 @@ def test_edge_killed_mid_scenario_is_detected_and_restart_resumes(
     # Every process ended cleanly (SIGTERM handled: exit code 0), none left running.
     assert all(c["exit_code"] is not None for c in launcher.summary())
     assert not launcher.unclean_exits(), launcher.unclean_exits()
-    cloud = json.loads(launcher.report_path("cloud").read_text())
+    cloud = launcher.report("cloud")
     assert cloud["outcome"] == "acknowledged" and cloud["pending_notifications"] == []

@@ -24,14 +24,10 @@ def test_hydration_completes_with_real_perception_and_activity_on_the_edge(
     tmp_path: Path, domain_id: int
 ) -> None:
     launcher = Launcher(load_deployment(DEPLOYMENT), tmp_path, domain_id=domain_id)
-    launcher.start()
-    try:
-        outcome = launcher.run()
-    finally:
-        launcher.stop()
+    outcome = launcher.run_all()
     assert outcome == "cloud finished"
     assert not launcher.unclean_exits(), launcher.unclean_exits()
-    edge = json.loads(launcher.report_path("edge").read_text())
+    edge = launcher.report("edge")
     assert edge["perception"] == "sim-detector" and edge["activity"] == "onnx"
     assert edge["runs"] and edge["runs"][-1]["outcome"] == "completed"
     received = edge["received"]

@@ -66,11 +66,11 @@ def test_cloud_killed_mid_scenario_restarts_with_its_ledger(tmp_path: Path, doma
     assert outcome == "cloud finished"
     kinds = [(e["type"], e["process"]) for e in launcher.events]
     assert ("exited", "cloud") in kinds and ("restarting", "cloud") in kinds
-    cloud = json.loads(launcher.report_path("cloud").read_text())  # the restarted cloud's
+    cloud = launcher.report("cloud")  # the restarted cloud's
     assert cloud["ledger"]["restored"] == 1 and cloud["ledger"]["corrupt"] == 0
     assert cloud["pending_notifications"] == [] and len(cloud["acks"]) == 1
     assert LedgerStore(tmp_path / "cloud-ledger.json").load().pending == {}
-    edge = json.loads(launcher.report_path("edge").read_text())
+    edge = launcher.report("edge")
     assert [r["outcome"] for r in edge["runs"]] == ["completed"]  # one run, not a second
     events = _events(cloud_events)  # both clouds' events, appended
     resent = [e for e in events if e["type"] == "notification_redelivered"]

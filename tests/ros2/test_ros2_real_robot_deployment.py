@@ -5,7 +5,6 @@ a ``go_to`` asked over ``/amiro/behavior/run`` drives the robot to a named place
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import subprocess
@@ -112,14 +111,14 @@ def test_edge_and_cloud_drive_a_ros2_robot_on_wall_time(tmp_path: Path, domain_i
     assert result.ok and result.outcome == "completed"
     x, y, _ = driver["pose"]
     assert math.dist((x, y), HALLWAY) < 0.35  # the robot's own pose: it got there
-    edge = json.loads(launcher.report_path("edge").read_text())
+    edge = launcher.report("edge")
     assert edge["runs"][-1]["outcome"] == "completed"
     robot = edge["robot"]
     assert robot["scans"] > 10 and robot["odom"] > 10 and robot["images"] > 0
     assert robot["commands"] > 0 and robot["errors"] == 0
     assert edge["bridge"]["errors"] == 0
     assert math.dist(edge["pose_estimate"][:2], (x, y)) < 0.3  # AMCL on the robot's topics
-    cloud = json.loads(launcher.report_path("cloud").read_text())
+    cloud = launcher.report("cloud")
     assert cloud["lost"] == {"edge": 0}  # the cloud heard the edge's heartbeat throughout
 
 

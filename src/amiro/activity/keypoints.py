@@ -89,18 +89,22 @@ def _openpose() -> Recipes:
     return recipes
 
 
-def _blazepose() -> Recipes:
-    k = {name: i for i, name in enumerate(BLAZEPOSE_33)}
+def _trunk(k: dict[str, int], head: tuple[Recipe, ...]) -> Recipes:
+    """Spine, head and neck of a format naming its hips and shoulders like COCO does."""
     hips = _mean(k["left_hip"], k["right_hip"])
     shoulders = _mean(k["left_shoulder"], k["right_shoulder"])
-    head = (_mean(k["left_ear"], k["right_ear"]), _mean(k["nose"]))
-    recipes: Recipes = {
+    return {
         "SpineBase": (hips,),
         "SpineMid": (_between(hips, shoulders, _SPINE_MID),),
         "SpineShoulder": (shoulders,),
         "Head": head,
         "Neck": tuple(_between(shoulders, h, _NECK) for h in head),
     }
+
+
+def _blazepose() -> Recipes:
+    k = {name: i for i, name in enumerate(BLAZEPOSE_33)}
+    recipes = _trunk(k, (_mean(k["left_ear"], k["right_ear"]), _mean(k["nose"])))
     for side in ("Left", "Right"):
         s = side.lower() + "_"
         recipes |= {
@@ -122,20 +126,12 @@ def _coco() -> Recipes:
     """COCO's 17 keypoints (YOLO-pose, RTMPose, ViTPose...): no feet, so FootLeft and
     FootRight stay unseen; hands extrapolated along the forearm as for BODY_25."""
     k = {name: i for i, name in enumerate(COCO_17)}
-    hips = _mean(k["left_hip"], k["right_hip"])
-    shoulders = _mean(k["left_shoulder"], k["right_shoulder"])
     head = (
         _mean(k["left_ear"], k["right_ear"]),
         _mean(k["left_eye"], k["right_eye"]),
         _mean(k["nose"]),
     )
-    recipes: Recipes = {
-        "SpineBase": (hips,),
-        "SpineMid": (_between(hips, shoulders, _SPINE_MID),),
-        "SpineShoulder": (shoulders,),
-        "Head": head,
-        "Neck": tuple(_between(shoulders, h, _NECK) for h in head),
-    }
+    recipes = _trunk(k, head)
     for side in ("Left", "Right"):
         s = side.lower() + "_"
         elbow, wrist = _mean(k[s + "elbow"]), _mean(k[s + "wrist"])

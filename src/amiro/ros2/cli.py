@@ -128,13 +128,10 @@ def _launch(args: argparse.Namespace) -> int:
     only = tuple(n for n in args.only.split(",") if n)
     launcher = Launcher(dep, log_dir, only, args.domain_id)
     started = wall_seconds()
-    launcher.start()
     try:
-        outcome = launcher.run()
+        outcome = launcher.run_all()
     except KeyboardInterrupt:
         outcome = "interrupted"
-    finally:
-        launcher.stop()
     unclean = sorted(launcher.unclean_exits())
     reports = {}
     for name in launcher.children:

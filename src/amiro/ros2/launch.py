@@ -9,6 +9,7 @@ machines, run ``amiro launch FILE --only NAME`` on each with ``localhost_only: f
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -97,6 +98,11 @@ class Launcher:
     def report_path(self, name: str) -> Path:
         return self.log_dir / f"{name}.json"
 
+    def report(self, name: str) -> dict[str, Any]:
+        """The JSON report process ``name`` wrote when it ended."""
+        report: dict[str, Any] = json.loads(self.report_path(name).read_text(encoding="utf-8"))
+        return report
+
     def log_path(self, name: str) -> Path:
         return self.log_dir / f"{name}.log"
 
@@ -166,6 +172,14 @@ class Launcher:
                 return "all exited"
             time.sleep(period_s)
         return "timeout"
+
+    def run_all(self) -> str:
+        """Start every process, watch until the deployment ends, then stop them all."""
+        self.start()
+        try:
+            return self.run()
+        finally:
+            self.stop()
 
     def stop(self) -> None:
         """SIGTERM every live process, then SIGKILL those still running after the grace time."""
