@@ -22,7 +22,7 @@ def _write(path: Path, data: dict[str, object]) -> Path:
 def _deployment(tmp_path: Path) -> Path:
     sim = {
         "role": "sim",
-        "speed": 5.0,
+        "speed": 3.0,  # as the shipped deployment: a busy edge keeps pace
         "wait_for": ["amiro_edge", "amiro_cloud"],
         "serve_actions": [MOVE_TO_ACTION],
         "publish": [*DEFAULT_PUBLISH["sim"], LOCALIZATION_TOPIC],  # the pose the edge reads
