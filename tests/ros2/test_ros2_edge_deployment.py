@@ -39,5 +39,5 @@ def test_hydration_completes_with_real_perception_and_activity_on_the_edge(
         e for e in events if e["type"] == "task_finished" and e["task_type"] == "RecognizeActivity"
     ]
     assert watched and watched[-1]["detail"]["activity"] == "drink_water"
-    # The robot's own motion is not mistaken for hers: no fall raised while it drives.
+    # Fall monitoring is off on the split edge (hydration-edge-system.yaml): none raised.
     assert not [e for e in events if e["type"] == "fall_detected"]
