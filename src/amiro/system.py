@@ -39,6 +39,8 @@ from amiro.environment.config import EnvironmentConfig
 from amiro.environment.dialogue_sources import environment_sources
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
+from amiro.home.household import Person
+from amiro.home.world import World, default_home_path
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MoveToNode
 from amiro.navigation.primitives import PrimitivesNode
@@ -47,12 +49,11 @@ from amiro.perception.config import PerceptionConfig
 from amiro.perception.ports import PeopleFinder
 from amiro.perception.stack import PoseSource, build_people_finder
 from amiro.robot.build import RealRobot, build_robot
+from amiro.robot.camera import HeadCamera
 from amiro.robot.config import RobotConfig
 from amiro.sim.config import SimConfig
-from amiro.sim.sensing import HeadCamera
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.skeletons import SkeletonCamera
-from amiro.sim.world import World, default_home_path
 
 if TYPE_CHECKING:  # these load onnxruntime / OpenCV: only when their backend is chosen
     from amiro.activity.recognizer import SkeletonSource
@@ -88,6 +89,16 @@ class SystemConfig(Section):
     environment: EnvironmentConfig = Field(default_factory=EnvironmentConfig)
     behavior: BehaviorConfig = Field(default_factory=BehaviorConfig)
     robot: RobotConfig = Field(default_factory=RobotConfig)
+    household: list[Person] = Field(
+        default_factory=list,
+        description="the people the robot serves; default: the simulated home's residents",
+    )
+
+    def people(self) -> list[Person]:
+        """The household: as configured, else the simulator's residents as persons."""
+        if self.household:
+            return list(self.household)
+        return [Person(name=r.name, language=r.language, voice=r.voice) for r in self.sim.residents]
 
 
 @dataclass(frozen=True)
@@ -213,7 +224,7 @@ def build_behavior_layer(
         if not path.is_file():
             raise ConfigError(f"behavior.handlers.{kind}: {path}: no such file")
         handlers.register(kind, yaml_handler(path), replace=True)
-    residents = [r.name for r in cfg.sim.residents]
+    residents = [p.name for p in cfg.people()]
     # A camera robot watches the people it tracks; the simulator names its residents.
     watch: Callable[[], list[str]] = (
         modules["perception"].people if cfg.perception.backend == "camera" else lambda: residents
@@ -222,7 +233,7 @@ def build_behavior_layer(
         runtime.add(
             FallMonitorNode(modules["activity"], handlers, watch, cfg.activity.fall_period_s)
         )
-    profiles = {r.name: UserProfile(r.name, r.name.title(), r.language) for r in cfg.sim.residents}
+    profiles = {p.name: UserProfile(p.name, p.name.title(), p.language) for p in cfg.people()}
     notifications = runtime.add(
         NotificationHandlerNode(engine, handlers, profiles, checkpoints=checkpoints)
     )
@@ -311,7 +322,7 @@ def _assemble(
     rules = runtime.add(RulesNode(list(cfg.environment.rules), cfg.environment.home_id))
     environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     sources = environment_sources(runtime, environment, rooms)
-    voices = household_voices({r.name: r.language for r in cfg.sim.residents})
+    voices = household_voices(cfg.people())
     dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=layer.submit, sources=sources)
     modules.update({"speech": dialogue.speech, "nlu": dialogue.nlu})
     return System(

@@ -23,7 +23,7 @@ from amiro.activity.render import through_pose_estimator
 from amiro.activity.skeleton import JOINTS, J
 from amiro.core.config import ConfigError
 from amiro.perception.onnx_standins import fixed_answer_model
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 IMAGE = np.zeros((480, 640, 3), dtype=np.uint8)  # a 320 model: half scale, 40 px bands
 

@@ -30,7 +30,7 @@ from amiro.core.runtime import Runtime
 from amiro.perception.camera_feed import CameraFeed
 from amiro.perception.onnx_standins import fixed_answer_model
 from amiro.robot import ports
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 INFO = Camera().info(0.0)
 MODEL = ActivityModel()

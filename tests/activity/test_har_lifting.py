@@ -7,7 +7,7 @@ from amiro.activity.motion import View, perform, to_camera
 from amiro.activity.render import depth_image, project
 from amiro.activity.skeleton import J
 from amiro.core.config import ConfigError
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 INFO = Camera().info(0.0)
 

@@ -7,7 +7,7 @@ from amiro.activity.labels import ACTIONS
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.render import depth_image, project, through_pose_estimator
 from amiro.activity.skeleton import J, visible
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 CAMERA = Camera()
 INFO = CAMERA.info(0.0)

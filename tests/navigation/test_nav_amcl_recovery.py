@@ -13,18 +13,18 @@ import numpy as np
 import pytest
 
 from amiro.core.clock import SimClock
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
+from amiro.home.world import World, default_home_path
 from amiro.navigation.amcl import ParticleFilter
 from amiro.navigation.likelihood import LikelihoodField
 from amiro.navigation.localization import GLOBAL_LOCALIZATION_SERVICE, AmclLocalizer
 from amiro.navigation.poses import between, compose
 from amiro.sim.base import Odometry
 from amiro.sim.carmen_log import drive
-from amiro.sim.geometry import wrap_angle
 from amiro.sim.lidar import Lidar
-from amiro.sim.world import World, default_home_path
 
 ROUTE = [(0.8, 1.0), (2.0, 1.0), (2.0, 4.2), (6.8, 4.2), (5.0, 4.2), (5.0, 2.0), (8.5, 2.0)]
 BACK = [(8.5, 2.0), (5.0, 2.0), (5.0, 4.2), (2.0, 4.2), (2.0, 1.0), (0.8, 1.0)]

@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 
 import pytest
 
+from amiro.core.geometry import wrap_angle as wrap
 from amiro.core.messages import Pose2D
 from amiro.navigation.follower import FollowerLimits, PathFollower
-from amiro.sim.geometry import wrap_angle as wrap
 
 DT = 0.1  # the navigation control period (10 Hz)
 

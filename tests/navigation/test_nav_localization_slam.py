@@ -10,6 +10,7 @@ import pytest
 
 from amiro.core.config import ConfigError
 from amiro.core.messages import LaserScan, Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.navigation.amcl import AmclParams, ParticleFilter
 from amiro.navigation.carmen import read_carmen
 from amiro.navigation.likelihood import LikelihoodField
@@ -17,7 +18,6 @@ from amiro.navigation.metrics import ate_rmse, dtw, resample
 from amiro.navigation.slam_run import run_slam
 from amiro.sim.carmen_log import write_log
 from amiro.sim.lidar import Lidar
-from amiro.sim.world import World, default_home_path
 
 ROUTE = [(0.8, 1.0), (2.0, 1.0), (2.0, 4.2), (6.8, 4.2), (5.0, 4.2), (5.0, 2.0), (8.5, 2.0)]
 

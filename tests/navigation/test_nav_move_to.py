@@ -13,16 +13,16 @@ import pytest
 
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.clock import SimClock
+from amiro.core.geometry import wrap_angle as wrap
 from amiro.core.gridmap import GridMap, load_map
 from amiro.core.messages import Path, Point, Pose2D, String, Twist
 from amiro.core.runtime import Runtime
+from amiro.home.world import default_home_path
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToNode
 from amiro.navigation.stack import GROUND_TRUTH_TOPIC, build_navigation
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
-from amiro.sim.geometry import wrap_angle as wrap
 from amiro.sim.simulator import Simulation, build_sim
-from amiro.sim.world import default_home_path
 
 CFG = NavigationConfig(localization="oracle")
 # the living_door opening (x 4.5..5.4 at y = 3.5) filled wall to wall

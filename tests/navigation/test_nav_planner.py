@@ -10,11 +10,11 @@ import pytest
 
 from amiro.core.gridmap import load_map
 from amiro.core.messages import Point, Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.costmap import Costmap, GridFrame
 from amiro.navigation.planner import GlobalPlanner
 from amiro.navigation.stack import costmap_from_map
-from amiro.sim.world import World, default_home_path
 
 RES = 0.1
 

@@ -9,6 +9,7 @@ import pytest
 
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.clock import SimClock
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import String
 from amiro.core.runtime import Runtime
 from amiro.navigation.move_to import EMERGENCY_STOP_TOPIC
@@ -22,7 +23,6 @@ from amiro.navigation.primitives import (
     RotateGoal,
 )
 from amiro.sim.config import PoseSpec, SimConfig
-from amiro.sim.geometry import wrap_angle
 from amiro.sim.simulator import Simulation, build_sim
 
 # the hallway, facing along it (free for about 3 m ahead)

@@ -7,10 +7,10 @@ import math
 import numpy as np
 
 from amiro.core.messages import Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.navigation.correlative import CorrelativeMatcher, SearchWindow
 from amiro.navigation.occupancy import LogOddsGrid
 from amiro.sim.lidar import Lidar, LidarParams
-from amiro.sim.world import World, default_home_path
 
 
 def _mapped(world: World, poses: list[Pose2D]) -> LogOddsGrid:

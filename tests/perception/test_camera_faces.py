@@ -22,7 +22,7 @@ from amiro.perception.face_samples import in_scene, sample_face, views
 from amiro.perception.faces import DlibFaceEmbedder, FaceGallery
 from amiro.perception.ports import Frame
 from amiro.robot import ports
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 BOX = BoundingBox2D(412.0, 240.0, 224.0, 480.0)  # the portrait's columns, the whole height
 

@@ -35,7 +35,7 @@ from amiro.perception.onnx_yolo import YoloOnnxDetector
 from amiro.perception.ports import Frame
 from amiro.perception.synthetic_scene import Cylinder, Scene, render
 from amiro.robot import ports
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 CAMERA = Camera()
 

@@ -19,7 +19,7 @@ from amiro.core.runtime import Runtime
 from amiro.perception.camera_stack import build_camera_modules
 from amiro.perception.onnx_standins import fixed_answer_model
 from amiro.robot import ports
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 from amiro.system import SystemConfig
 
 INFO = Camera().info(0.0)

@@ -14,7 +14,7 @@ from amiro.core.messages import BoundingBox2D
 from amiro.perception.cli import register
 from amiro.perception.estimation import CameraGeometry, Views
 from amiro.perception.locate import locate_people
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 from amiro.sim.rgbd_dataset import DatasetSpec, generate
 
 

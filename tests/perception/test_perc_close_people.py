@@ -12,7 +12,7 @@ from amiro.core.runtime import Runtime
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.estimation import CameraGeometry, body_centre_row
 from amiro.perception.stack import SimPeopleFinder
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 

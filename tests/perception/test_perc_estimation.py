@@ -10,7 +10,7 @@ import pytest
 from amiro.core.messages import BoundingBox2D, Pose2D
 from amiro.perception.depth import centre_depth, densest_cluster, torso_depth
 from amiro.perception.estimation import CameraGeometry, Views, improved, paper_formula
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 
 def geometry(cam: Camera) -> CameraGeometry:

@@ -16,8 +16,8 @@ from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.stack import SimPeopleFinder, build_people_finder
+from amiro.robot.camera import CameraObservation
 from amiro.sim.config import SimConfig
-from amiro.sim.messages import CameraObservation
 from amiro.sim.simulator import build_sim
 
 

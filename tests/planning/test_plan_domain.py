@@ -11,7 +11,7 @@ from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.behavior.planning.topology import grid_topology, topology_from_world
 from amiro.core.config import ConfigError
-from amiro.sim.world import World, default_home_path
+from amiro.home.world import World, default_home_path
 
 
 @pytest.fixture(scope="module")

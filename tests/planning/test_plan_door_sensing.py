@@ -7,10 +7,10 @@ import numpy as np
 from amiro.behavior.planning.door_sensing import door_state_from_scan
 from amiro.behavior.planning.knowledge import DoorState
 from amiro.core.messages import Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.sim.door_help import open_nearest_door
 from amiro.sim.lidar import Lidar, LidarParams
 from amiro.sim.residents import Resident
-from amiro.sim.world import World, default_home_path
 
 LIVING_DOOR = ((4.5, 3.5), (5.4, 3.5))
 KITCHEN_DOOR = ((6.3, 5.0), (7.2, 5.0))

@@ -15,14 +15,14 @@ from amiro.behavior.planning.planner import HomePlanner, PlanningConfig
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError
-from amiro.sim.world import World, default_home_path
+from amiro.home.world import World, default_home_path
 
 DEFAULT_PLANNING_PATH = """
 import sys
 from amiro.behavior.planning import HomePlanner, KnowledgeBase, PlanningConfig, Goal, RobotState
 from amiro.behavior.planning import topology_from_world
 from amiro.scenarios.deliver_notification import DeliveryOptions
-from amiro.sim.world import World, default_home_path
+from amiro.home.world import World, default_home_path
 
 kb = KnowledgeBase(topology_from_world(World.load(default_home_path())), {"maria": "living_room"})
 config = PlanningConfig(engine=DeliveryOptions().engine)

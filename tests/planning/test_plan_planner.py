@@ -9,7 +9,7 @@ from amiro.behavior.planning.planner import HomePlanner, PlanningConfig
 from amiro.behavior.planning.problem import Goal, RobotState
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError
-from amiro.sim.world import World, default_home_path
+from amiro.home.world import World, default_home_path
 
 DOCK = RobotState("hallway", 0.8, 1.0)
 GOAL = [Goal("notified", "maria")]

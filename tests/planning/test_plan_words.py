@@ -10,11 +10,12 @@ from amiro.behavior.planning.planner import PlanStep
 from amiro.behavior.planning.problem import RobotState
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError
-from amiro.dialogue.phrases import LANGUAGES, phrase
+from amiro.dialogue.phrases import phrase
+from amiro.home.household import LANGUAGES
+from amiro.home.world import World, default_home_path
 from amiro.scenarios.deliver_notification import DeliveryOptions, run_delivery
 from amiro.scenarios.recorder import narrate
 from amiro.sim import door_help
-from amiro.sim.world import World, default_home_path
 
 STEPS = [
     PlanStep("move", ("robot_start", "living_door_hallway")),

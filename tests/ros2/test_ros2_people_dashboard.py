@@ -8,6 +8,7 @@ from amiro.behavior.engine import BehaviorEngine
 from amiro.core.clock import SimClock
 from amiro.core.messages import Header, People, Person, Point
 from amiro.core.runtime import Runtime
+from amiro.home.world import World, default_home_path
 from amiro.navigation.localization import LOCALIZATION_TOPIC
 from amiro.perception.tracking import Measurement, PeopleTracker
 from amiro.ros2.behaviors import BehaviorRequests
@@ -18,7 +19,6 @@ from amiro.ros2.routes import route
 from amiro.ros2.types import RosbagsTypes
 from amiro.ros2.web_robot import RemoteRobot
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
-from amiro.sim.world import World, default_home_path
 from amiro.system import SystemConfig
 
 

@@ -20,6 +20,7 @@ from amiro.core.messages import (
 )
 from amiro.core.runtime import Runtime
 from amiro.navigation.poses import compose
+from amiro.robot.camera import Camera, CameraParams
 from amiro.robot.ports import HEAD_PITCH, HEAD_YAW
 from amiro.ros2.tf import (
     OPTICAL,
@@ -31,7 +32,6 @@ from amiro.ros2.tf import (
     robot_frames,
     transform,
 )
-from amiro.sim.camera import Camera, CameraParams
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import build_sim
 

@@ -8,8 +8,8 @@ import numpy as np
 
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.sim.base import BaseLimits, Odometry, OmniBase
-from amiro.sim.world import World, default_home_path
 
 DT = 0.05
 

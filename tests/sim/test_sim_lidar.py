@@ -9,8 +9,8 @@ import pytest
 
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
+from amiro.home.world import World, default_home_path
 from amiro.sim.lidar import Lidar, LidarParams
-from amiro.sim.world import World, default_home_path
 
 
 def box_room() -> GridMap:

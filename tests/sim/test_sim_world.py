@@ -11,7 +11,7 @@ from scipy import ndimage
 
 from amiro.core.config import ConfigError
 from amiro.core.gridmap import load_map
-from amiro.sim.world import World, default_home_path, render_home
+from amiro.home.world import World, default_home_path, render_home
 
 ROOMS = {"hallway", "living_room", "kitchen", "bedroom", "bathroom"}
 ROBOT_RADIUS = 0.25

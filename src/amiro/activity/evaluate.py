@@ -29,7 +29,7 @@ from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.render import through_pose_estimator
 from amiro.activity.skeleton import FloatArray
 from amiro.core.config import ConfigError
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 EVAL_FRAMES = 30  # 2 s at the model's 15 Hz
 MISSING_FRACTIONS = (0.1, 0.2, 0.3, 0.5)

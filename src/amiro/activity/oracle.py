@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from amiro.activity.ports import ActivityReading
+from amiro.robot.camera import HeadCamera
 from amiro.sim.residents import ACTIVITIES
-from amiro.sim.sensing import HeadCamera
 
 
 class OracleActivityRecognizer:

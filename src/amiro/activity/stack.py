@@ -14,7 +14,7 @@ import numpy as np
 from amiro.activity.config import ActivityConfig
 from amiro.activity.ports import ActivityRecognizer
 from amiro.core import registry
-from amiro.sim.sensing import HeadCamera
+from amiro.robot.camera import HeadCamera
 
 if TYPE_CHECKING:  # the recogniser loads onnxruntime: only when that backend is chosen
     from amiro.activity.recognizer import SkeletonSource

@@ -10,8 +10,7 @@ from typing import Any
 import yaml
 
 from amiro.core.config import ConfigError
-
-LANGUAGES = ("en", "ro", "fr")
+from amiro.home.household import LANGUAGES
 
 
 @cache

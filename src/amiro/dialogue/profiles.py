@@ -3,16 +3,16 @@ voice and audio settings, so one household can mix languages and voices."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import Literal
+from collections.abc import Iterable
 
 from pydantic import Field
 
 from amiro.core.config import Section
+from amiro.home.household import Language, Person
 
 
 class SpeakerProfile(Section):
-    lang: Literal["en", "ro", "fr"] = "en"
+    lang: Language = "en"
     voice: str = Field(default="", description="TTS voice; empty: the language's default")
     words_per_minute: int = Field(default=150, ge=60, le=400)
     gain_db: float = Field(default=0.0, ge=-30.0, le=30.0, description="applied before ASR")
@@ -24,6 +24,7 @@ def language_of(profiles: dict[str, SpeakerProfile], speaker: str | None, fallba
     return profile.lang if profile is not None else fallback
 
 
-def household_voices(languages: Mapping[str, str]) -> dict[str, SpeakerProfile]:
-    """A profile per resident (name -> language), for residents without a configured one."""
-    return {name: SpeakerProfile.model_validate({"lang": lang}) for name, lang in languages.items()}
+def household_voices(people: Iterable[Person]) -> dict[str, SpeakerProfile]:
+    """A profile per person of the household (language and voice), for people without a
+    configured one."""
+    return {p.name: SpeakerProfile(lang=p.language, voice=p.voice) for p in people}

@@ -9,9 +9,10 @@ from pathlib import Path
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.entities import Entity
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse
-from amiro.dialogue.phrases import LANGUAGES, check_language
+from amiro.dialogue.phrases import check_language
 from amiro.dialogue.profiles import SpeakerProfile, language_of
 from amiro.dialogue.training_data import load_training_data, shipped_training_data
+from amiro.home.household import LANGUAGES
 
 
 @cache

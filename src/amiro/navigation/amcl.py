@@ -26,10 +26,10 @@ from statistics import NormalDist
 import numpy as np
 import numpy.typing as npt
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import LaserScan, Pose2D
 from amiro.navigation.likelihood import LikelihoodField
 from amiro.navigation.poses import between
-from amiro.sim.geometry import wrap_angle
 
 FloatArray = npt.NDArray[np.float64]
 

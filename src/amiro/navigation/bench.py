@@ -11,6 +11,7 @@ import numpy as np
 
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Header, LaserScan, Pose2D, Twist
+from amiro.home.world import World, default_home_path
 from amiro.navigation.amcl import AmclParams, ParticleFilter
 from amiro.navigation.astar import astar
 from amiro.navigation.costmap import Costmap, GridFrame
@@ -18,7 +19,6 @@ from amiro.navigation.dwa import DynamicWindow
 from amiro.navigation.likelihood import LikelihoodField
 from amiro.navigation.slam import HectorSlam
 from amiro.sim.lidar import Lidar
-from amiro.sim.world import World, default_home_path
 
 
 def _median_ms(fn: Callable[[], object], repeat: int) -> float:

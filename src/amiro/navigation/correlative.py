@@ -17,8 +17,8 @@ import numpy as np
 import numpy.typing as npt
 from scipy.ndimage import gaussian_filter, maximum_filter
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
-from amiro.sim.geometry import wrap_angle
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -13,8 +13,8 @@ import itertools
 import math
 from dataclasses import dataclass
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D, Twist
-from amiro.sim.geometry import wrap_angle
 
 
 @dataclass(frozen=True)

@@ -16,12 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
 from amiro.navigation.correlative import CorrelativeMatcher, SearchWindow
 from amiro.navigation.poses import between, compose
 from amiro.navigation.slam import match_scan
 from amiro.navigation.submaps import Submap
-from amiro.sim.geometry import wrap_angle
 
 FloatArray = npt.NDArray[np.float64]
 

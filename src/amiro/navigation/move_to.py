@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass
 
 from amiro.core.bus import ActionServer, GoalHandle
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import (
     Header,
     LaserScan,
@@ -28,7 +29,6 @@ from amiro.navigation.dwa import DwaParams, DynamicWindow
 from amiro.navigation.follower import FollowerLimits, PathFollower
 from amiro.navigation.localization import Localizer, OracleLocalizer
 from amiro.navigation.planner import GlobalPlanner
-from amiro.sim.geometry import wrap_angle
 
 MOVE_TO_ACTION = "/amiro/navigation/move_to"
 EMERGENCY_STOP_TOPIC = "/amiro/emergency_stop"

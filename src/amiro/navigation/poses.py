@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
-from amiro.sim.geometry import wrap_angle
 
 
 def compose(a: Pose2D, b: Pose2D) -> Pose2D:

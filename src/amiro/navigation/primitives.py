@@ -15,11 +15,11 @@ from typing import Any
 import numpy as np
 
 from amiro.core.bus import ActionServer, GoalHandle
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import LaserScan, Odometry, Pose2D, String, Twist
 from amiro.core.node import Node
 from amiro.navigation.move_to import EMERGENCY_STOP_TOPIC
 from amiro.navigation.poses import between
-from amiro.sim.geometry import wrap_angle
 
 FORWARD_ACTION = "/amiro/navigation/forward"
 ROTATE_ACTION = "/amiro/navigation/rotate"

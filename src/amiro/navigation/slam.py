@@ -15,11 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
 from amiro.navigation.occupancy import L_CLAMP, LogOddsGrid, bilinear
 from amiro.navigation.poses import between, compose
-from amiro.sim.geometry import wrap_angle
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -20,7 +20,7 @@ from amiro.perception.estimation import CameraGeometry, Views
 from amiro.perception.face_samples import in_scene, sample_face, views
 from amiro.perception.faces import DlibFaceEmbedder, FaceGallery
 from amiro.perception.locate import locate_people
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 from amiro.sim.rgbd_dataset import DatasetSpec, generate
 
 

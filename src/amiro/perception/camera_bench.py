@@ -32,7 +32,7 @@ from amiro.perception.onnx_standins import standin_yolo
 from amiro.perception.onnx_yolo import YoloOnnxDetector
 from amiro.perception.ports import Detector, Frame
 from amiro.perception.synthetic_scene import Cylinder, render
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 ROBOT = Pose2D(0.0, 0.0, 0.0)
 PEOPLE = [Cylinder(3.2, -0.4), Cylinder(4.5, 0.8)]

@@ -23,8 +23,7 @@ from amiro.perception.estimation import CameraGeometry, FloatArray, Views, paper
 from amiro.perception.locate import locate_people
 from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector, iou
-from amiro.sim.camera import Camera
-from amiro.sim.messages import CameraObservation
+from amiro.robot.camera import Camera, CameraObservation
 from amiro.sim.rgbd_dataset import CAMERAS, POSTURES, SIM_POSTURE, DatasetSpec, RgbdBatch, generate
 
 MIN_IOU = 0.3

@@ -11,7 +11,7 @@ import numpy as np
 
 from amiro.core.messages import Point
 from amiro.perception.ports import SeenPerson
-from amiro.sim.sensing import HeadCamera
+from amiro.robot.camera import HeadCamera
 
 
 class OraclePeopleFinder:

@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from amiro.core.messages import Detection2D, Point
 from amiro.perception.sim_objects import ObjectObservation
-from amiro.sim.messages import CameraObservation
+from amiro.robot.camera import CameraObservation
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from amiro.core.messages import BoundingBox2D, Detection2D
 from amiro.perception.config import SimDetectorSection
 from amiro.perception.ports import Frame
 from amiro.perception.sim_objects import ObjectObservation
-from amiro.sim.messages import CameraObservation
+from amiro.robot.camera import CameraObservation
 
 
 def distance_factor(distance: float) -> float:

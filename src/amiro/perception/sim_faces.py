@@ -12,7 +12,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from amiro.perception.config import FaceSection
-from amiro.sim.messages import CameraObservation
+from amiro.robot.camera import CameraObservation
 
 
 class SimFaceIdentifier:

@@ -19,8 +19,8 @@ from pydantic import Field
 
 from amiro.core.config import ConfigError, Section, load
 from amiro.core.messages import BoundingBox2D, Point, Pose2D
-from amiro.sim.camera import Camera
-from amiro.sim.world import World
+from amiro.home.world import World
+from amiro.robot.camera import Camera
 
 # COCO's name for each furniture kind a detector trained on it can find.
 FURNITURE_LABELS = {

@@ -30,8 +30,7 @@ from amiro.perception.ports import Frame, PeopleFinder, SeenPerson
 from amiro.perception.sim_detector import SimDetector, best_match
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.tracking import Measurement, PeopleTracker
-from amiro.sim.messages import CameraObservation
-from amiro.sim.sensing import HeadCamera
+from amiro.robot.camera import CameraObservation, HeadCamera
 from amiro.sim.simulator import Simulation
 
 # Depth the simulator's camera reports for a box no resident explains (a false positive):

@@ -18,7 +18,7 @@ import numpy.typing as npt
 
 from amiro.core.messages import BoundingBox2D, Pose2D
 from amiro.perception.hog import import_cv2
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -6,7 +6,7 @@ the head camera's frame on ``/amiro/sim/observations`` (the simulated camera ren
 pixels; its observations are the "image" the simulated detector and face backends read),
 its intrinsics on ``/camera/camera_info``, the head joints on ``/joint_states`` (from the
 robot node) and the skeleton camera's NTU frames on ``/amiro/sim/skeletons``.  The edge's
-:class:`HeadSensorsFeed` offers them as the same :class:`~amiro.sim.sensing.HeadCamera` and
+:class:`HeadSensorsFeed` offers them as the same :class:`~amiro.robot.camera.HeadCamera` and
 skeleton source, so it runs the same perception and activity code as the embedded system.
 """
 
@@ -26,9 +26,8 @@ from amiro.core.messages import CameraInfo, Header, JointState, Odometry, Pose2D
 from amiro.core.node import Node
 from amiro.navigation.poses import between, compose
 from amiro.perception.stack import PoseSource
+from amiro.robot.camera import Camera, CameraObservation, CameraParams
 from amiro.robot.ports import CAMERA_INFO, HEAD_PITCH, HEAD_YAW, JOINT_STATES, ODOM
-from amiro.sim.camera import Camera, CameraParams
-from amiro.sim.messages import CameraObservation
 from amiro.sim.simulator import Simulation
 from amiro.sim.skeletons import (
     HISTORY_S,
@@ -115,7 +114,7 @@ class HeadSensorsPublisher(Node):
 class HeadSensorsFeed:
     """Edge side: the robot's head camera and skeleton stream from the bridged topics.
 
-    Implements :class:`~amiro.sim.sensing.HeadCamera` and the activity recogniser's
+    Implements :class:`~amiro.robot.camera.HeadCamera` and the activity recogniser's
     skeleton source.  The camera's mount (height, forward) is the robot's description, from
     the configuration; the head joints are those nearest in time to the frame, and the
     robot's pose is the ``localization`` estimate carried back to the frame's time by

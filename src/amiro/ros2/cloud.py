@@ -23,12 +23,12 @@ from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.dialogue_sources import environment_sources
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
+from amiro.home.world import HomeSpec
 from amiro.navigation.localization import GROUND_TRUTH_TOPIC, LOCALIZATION_TOPIC
 from amiro.ros2.behaviors import BEHAVIOR_ACTION, BehaviorRequests
 from amiro.ros2.config import NodeConfig
 from amiro.ros2.dialogue import UNDERSTAND_SERVICE, DialogueBehaviors, UnderstandingService
 from amiro.ros2.web_robot import RemoteRobot
-from amiro.sim.world import HomeSpec
 from amiro.system import SHIPPED_BEHAVIORS, SystemConfig
 from amiro.web.config import WebConfig
 from amiro.web.server import WebServer
@@ -106,7 +106,7 @@ def add_cloud_services(
         services.requests = runtime.add(BehaviorRequests())
         say = runtime.bus.publisher(SAY_TOPIC, SpeechRequest)
         services.behaviors = DialogueBehaviors(services.requests, say)
-    voices = household_voices({r.name: r.language for r in cfg.sim.residents})
+    voices = household_voices(cfg.people())
     sources = None if environment is None else environment_sources(runtime, environment, rooms)
     services.dialogue = build_dialogue(
         runtime, cfg.dialogue, voices, submit=services.behaviors, sources=sources

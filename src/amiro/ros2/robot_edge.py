@@ -14,13 +14,13 @@ from typing import Any
 
 from amiro.core.config import ConfigError
 from amiro.core.runtime import Runtime
+from amiro.home.world import World
 from amiro.perception.camera_stack import build_camera_modules
 from amiro.robot.build import build_robot
 from amiro.robot.config import RobotConfig
 from amiro.ros2.config import NodeConfig, RosSection
 from amiro.ros2.people import TrackedPeoplePublisher
 from amiro.ros2.roles import RoleParts, add_navigation, edge_behaviors
-from amiro.sim.world import World
 from amiro.system import Senses, SystemConfig, home_path
 
 

@@ -21,9 +21,11 @@ from amiro.dialogue.profiles import household_voices
 from amiro.dialogue.stack import build_understanding
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
+from amiro.home.world import World, default_home_path
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToNode
 from amiro.navigation.stack import build_navigation
 from amiro.perception.stack import SimPeopleFinder
+from amiro.robot.camera import CameraParams
 from amiro.ros2.behaviors import BEHAVIOR_ACTION, BehaviorActionServer
 from amiro.ros2.boundary import HeadSensorsFeed, HeadSensorsPublisher, NavigationState
 from amiro.ros2.cloud import add_cloud_services, pose_topic
@@ -34,10 +36,8 @@ from amiro.ros2.ledger_store import LedgerStore
 from amiro.ros2.people import TrackedPeoplePublisher, finder_tracker
 from amiro.ros2.sim_camera import SimCameraNode
 from amiro.ros2.tf import MapOdomNode, robot_frames
-from amiro.sim.camera import CameraParams
 from amiro.sim.simulator import build_sim
 from amiro.sim.skeletons import SkeletonCamera
-from amiro.sim.world import World, default_home_path
 from amiro.system import (
     BehaviorLayer,
     Senses,
@@ -118,7 +118,7 @@ def build_edge_role(
     feed = HeadSensorsFeed(
         runtime.bus,
         (cfg.sim.camera.height, CameraParams().forward),
-        tuple(r.name for r in cfg.sim.residents),
+        tuple(p.name for p in cfg.people()),
         lambda: navigation.pose,
     )
     senses = build_senses(runtime, cfg, feed, lambda _rng: feed, feed.robot_pose)
@@ -148,7 +148,7 @@ def edge_behaviors(
 ) -> BehaviorLayer:
     """The edge's behaviour engine on its modules, the behaviour action if served, and the
     heartbeat: the same on the simulator's topics and on a real robot's adapters."""
-    residents = household_voices({r.name: r.language for r in cfg.sim.residents})
+    residents = household_voices(cfg.people())
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
         if UNDERSTAND_SERVICE in node.call_services

@@ -18,8 +18,8 @@ from amiro.core.messages import CameraInfo, Header, Image
 from amiro.core.node import Node
 from amiro.perception.synthetic_scene import Cylinder, Scene, render
 from amiro.robot import ports
+from amiro.robot.camera import Camera
 from amiro.ros2.config import SimCameraSection
-from amiro.sim.camera import Camera
 from amiro.sim.simulator import Simulation
 
 

@@ -29,8 +29,8 @@ from amiro.core.messages import (
 )
 from amiro.core.node import Node
 from amiro.navigation.poses import between, compose
+from amiro.robot.camera import CameraParams
 from amiro.robot.ports import HEAD_PITCH, HEAD_YAW, JOINT_STATES, ODOM, TF
-from amiro.sim.camera import CameraParams
 from amiro.sim.simulator import Simulation
 
 TF_STATIC = "/tf_static"

@@ -15,9 +15,9 @@ from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.task import make_task
 from amiro.core.messages import BehaviorEvent, People, Pose2D
 from amiro.core.node import Node
+from amiro.home.world import HomeSpec
 from amiro.ros2.behaviors import BehaviorGoal, BehaviorRequests
 from amiro.ros2.people import PEOPLE_TOPIC, dashboard_people
-from amiro.sim.world import HomeSpec
 from amiro.web.robot import pose_dict
 
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
-from amiro.sim.geometry import wrap_angle
 
 FreeTest = Callable[[float, float, float], bool]  # (x, y, radius) -> no collision
 

@@ -13,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
+from amiro.core.geometry import wrap_angle
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
 from amiro.navigation.carmen import flaser_line, odom_line
 from amiro.sim.base import DriftParams, Odometry
-from amiro.sim.geometry import wrap_angle
 from amiro.sim.lidar import Lidar, LidarParams
 
 MAX_RANGE_M = 12.0

@@ -8,7 +8,8 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from amiro.core.config import Section
-from amiro.sim.geometry import Vec2
+from amiro.core.geometry import Vec2
+from amiro.home.household import Person
 from amiro.sim.residents import ACTIVITIES, Posture
 
 
@@ -60,9 +61,9 @@ class ReplySpec(Section):
     delay: float = Field(default=2.0, ge=0.0)
 
 
-class ResidentSpec(Section):
-    name: str
-    language: Literal["en", "ro", "fr"] = "en"
+class ResidentSpec(Person):
+    """A simulated resident: a :class:`Person` placed in the home, with a scripted life."""
+
     at: str | None = Field(default=None, description="a seat or place of the home")
     pose: PoseSpec | None = None
     posture: Posture = "standing"

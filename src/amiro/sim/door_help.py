@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import math
 
+from amiro.home.world import World
 from amiro.sim.residents import Resident
-from amiro.sim.world import World
 
 OPEN_DOOR_REQUEST = "open_door_request"  # the dialogue act, as the planner's dispatch sends it
 DOOR_OPENING_S = 4.0

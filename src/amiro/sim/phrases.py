@@ -6,8 +6,6 @@ rule-based NLU gets exercised) while the oracle intent stays known.
 
 from __future__ import annotations
 
-LANGUAGES = ("en", "ro", "fr")
-
 # PHRASES[lang][context][reply] -> variants; context "hydration" for hydration reminders,
 # "generic" for everything else.
 PHRASES: dict[str, dict[str, dict[str, tuple[str, ...]]]] = {

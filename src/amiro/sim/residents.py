@@ -16,7 +16,8 @@ import numpy.typing as npt
 
 from amiro.activity.labels import ACTIONS, IDLE
 from amiro.core.messages import Point
-from amiro.sim.phrases import INTENTS, LANGUAGES, PHRASES, context_of
+from amiro.home.household import LANGUAGES
+from amiro.sim.phrases import INTENTS, PHRASES, context_of
 
 Posture = Literal["standing", "sitting_desk", "sitting_couch", "lying_couch"]
 ReplyKind = Literal["confirm", "deny", "postpone", "silence"]

@@ -21,7 +21,7 @@ import numpy.typing as npt
 
 from amiro.core.messages import Pose2D
 from amiro.perception.estimation import CameraGeometry, Views, improved
-from amiro.sim.camera import Camera
+from amiro.robot.camera import Camera
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -41,15 +41,16 @@ from amiro.core.messages import (
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
 from amiro.dialogue.output import speaking_time
+from amiro.home.world import World, default_home_path
+from amiro.robot.camera import Camera, CameraObservation, CameraParams
 from amiro.sim.base import BaseLimits, DriftParams, OmniBase
 from amiro.sim.base import Odometry as OdometryModel
-from amiro.sim.camera import Camera, CameraParams, Head
+from amiro.sim.camera import Head, observe_residents
 from amiro.sim.config import ResidentSpec, SimConfig
 from amiro.sim.door_help import DOOR_OPENING_S, OPEN_DOOR_REQUEST, open_nearest_door
 from amiro.sim.lidar import Lidar, LidarParams
-from amiro.sim.messages import CameraObservation, Collision, EmergencyStop
+from amiro.sim.messages import Collision, EmergencyStop
 from amiro.sim.residents import DRINK_DURATION, Reply, Resident, ScriptedReply
-from amiro.sim.world import World, default_home_path
 
 HEAD_JOINTS = ("HeadYaw", "HeadPitch")
 
@@ -202,7 +203,8 @@ class SimResidentsNode(Node):
     # --- accessors ----------------------------------------------------------------------
     def observe(self) -> list[CameraObservation]:
         """What the head camera sees right now."""
-        return self.camera.observe(
+        return observe_residents(
+            self.camera,
             self.world,
             self.robot.true_pose,
             self.robot.head_yaw,
@@ -296,7 +298,7 @@ class Simulation:
     robot: SimRobotNode
     residents: SimResidentsNode
 
-    # --- the head camera (see amiro.sim.sensing.HeadCamera) -------------------------------
+    # --- the head camera (see amiro.robot.camera.HeadCamera) -------------------------------
     def now(self) -> float:
         return self.robot.now()
 

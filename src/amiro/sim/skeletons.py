@@ -20,8 +20,7 @@ from amiro.activity.labels import IDLE
 from amiro.activity.motion import FPS, Body, perform
 from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
 from amiro.core.messages import CameraInfo, Pose2D
-from amiro.sim.camera import Camera
-from amiro.sim.messages import CameraObservation
+from amiro.robot.camera import Camera, CameraObservation
 from amiro.sim.residents import Resident
 from amiro.sim.simulator import Simulation
 

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 from amiro.behavior.graph import TaskGraph
 from amiro.behavior.task import make_task
 from amiro.core.messages import Pose2D
-from amiro.sim.world import HomeSpec
+from amiro.home.world import HomeSpec
 
 if TYPE_CHECKING:
     from amiro.system import System

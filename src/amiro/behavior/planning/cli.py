@@ -88,7 +88,7 @@ def _pddl(args: argparse.Namespace) -> int:
     from amiro.behavior.planning.knowledge import KnowledgeBase
     from amiro.behavior.planning.problem import Goal, RobotState, make_problem
     from amiro.behavior.planning.topology import topology_from_world
-    from amiro.sim.world import World, default_home_path
+    from amiro.home.world import World, default_home_path
 
     world = World.load(default_home_path())
     kb = KnowledgeBase(topology_from_world(world), {"maria": "living_room", "john": "hallway"})

@@ -2,7 +2,7 @@
 
 Planning does not need the occupancy grid, only where the robot can stop (one waypoint per
 room and one on each side of every door) and which waypoints a door links.  The topology is
-read from a :class:`~amiro.sim.world.World` or generated (for benchmarks), and it is all a
+read from a :class:`~amiro.home.world.World` or generated (for benchmarks), and it is all a
 PDDL problem's static facts are made of.
 """
 
@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from amiro.core.config import ConfigError
-from amiro.sim.world import World
+from amiro.home.world import World
 
 DOOR_OFFSETS_M = (0.6, 0.5, 0.75, 0.45, 0.9)  # tried in order: distance from the door line
 ROBOT_CLEARANCE_M = 0.38  # robot radius and the costmap safety margin

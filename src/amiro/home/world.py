@@ -16,9 +16,9 @@ import numpy.typing as npt
 from pydantic import Field, model_validator
 
 from amiro.core.config import ConfigError, Section, load
+from amiro.core.geometry import Vec2, points_in_polygon, thick_segment_mask
 from amiro.core.gridmap import FREE, OCCUPIED, GridMap, save_map
 from amiro.core.messages import Pose2D
-from amiro.sim.geometry import Vec2, points_in_polygon, thick_segment_mask
 
 FloatArray = npt.NDArray[np.float64]
 BoolArray = npt.NDArray[np.bool_]
