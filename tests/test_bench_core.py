@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from amiro.evaluation.bench_core import bench_bus, bench_engine, bench_lidar, bench_sim
+from amiro.evaluation.core_bench import bench_bus, bench_engine, bench_lidar, bench_sim
 
 
 def test_core_benchmarks_run_and_report_positive_rates() -> None:

@@ -12,8 +12,8 @@ from typing import get_args
 import pytest
 
 from amiro import __version__
-from amiro.behavior.planning.cli import ENGINES
 from amiro.cli import build_parser, main
+from amiro.commands.planning import ENGINES
 
 
 def amiro(*args: str) -> subprocess.CompletedProcess[str]:
@@ -148,7 +148,7 @@ def test_usage_errors_exit_2() -> None:
 _BIG_REPORT = """
 import argparse, sys
 from amiro import cli
-from amiro.cli_support import emit_json
+from amiro.commands.support import emit_json
 
 def build_parser():
     parser = argparse.ArgumentParser()

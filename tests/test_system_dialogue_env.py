@@ -6,11 +6,9 @@ from collections.abc import Iterator
 
 import pytest
 
+from amiro.core import names
 from amiro.core.messages import SpeechHeard, SpeechRequest
-from amiro.dialogue.node import HEARD_TOPIC
-from amiro.dialogue.output import SAY_TOPIC
 from amiro.environment.messages import HealthMeasurement
-from amiro.environment.topics import HEALTH_TOPIC
 from amiro.system import System, SystemConfig, build_system
 
 
@@ -27,7 +25,7 @@ def test_a_measurement_on_the_bus_is_the_answer_to_the_question(system: System) 
     before = manager.handle("what is my blood pressure", "en", "maria")
     assert "no measurement" in before.text
     now = rt.clock.iso(rt.clock.now())
-    rt.bus.publish(HEALTH_TOPIC, HealthMeasurement("maria", "blood_pressure", 128.0, now, 83.0))
+    rt.bus.publish(names.HEALTH, HealthMeasurement("maria", "blood_pressure", 128.0, now, 83.0))
     rt.spin_for(1.0)
     after = manager.handle("what is my blood pressure", "en", "maria")
     assert after.text == "Today, your blood pressure is 128/83 mmHg."
@@ -39,9 +37,9 @@ def test_a_spoken_command_switches_the_simulated_lights(system: System) -> None:
     rt, devices = system.runtime, system.environment.devices
     assert devices is not None and devices.states[("kitchen", "lights")] == "off"
     said: list[SpeechRequest] = []
-    rt.bus.subscribe(SAY_TOPIC, SpeechRequest, said.append, 10)
+    rt.bus.subscribe(names.SAY, SpeechRequest, said.append, 10)
     heard = SpeechHeard("turn on the lights in the kitchen", "en", speaker="maria")
-    rt.bus.publish(HEARD_TOPIC, heard)
+    rt.bus.publish(names.HEARD, heard)
     rt.spin_for(1.0)
     assert devices.states[("kitchen", "lights")] == "on"
     assert devices.states[("bedroom", "lights")] == "off"

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from amiro import __version__
-from amiro.cli_support import Handler
+from amiro.commands.support import Handler
 
 
 class _Parser(argparse.ArgumentParser):
@@ -25,17 +25,17 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    import amiro.activity.cli as activity_cli
-    import amiro.behavior.planning.cli as planning_cli
-    import amiro.dialogue.cli as dialogue_cli
-    import amiro.environment.cli as environment_cli
-    import amiro.evaluation.bench_cli as bench_cli
-    import amiro.navigation.cli as navigation_cli
-    import amiro.perception.cli as perception_cli
-    import amiro.recording.cli as recording_cli
-    import amiro.robot.cli as robot_cli
-    import amiro.ros2.cli as ros2_cli
-    import amiro.scenarios.cli as scenarios_cli
+    import amiro.commands.activity as activity_cli
+    import amiro.commands.bench as bench_cli
+    import amiro.commands.deploy as ros2_cli
+    import amiro.commands.dialogue as dialogue_cli
+    import amiro.commands.environment as environment_cli
+    import amiro.commands.navigation as navigation_cli
+    import amiro.commands.perception as perception_cli
+    import amiro.commands.planning as planning_cli
+    import amiro.commands.recording as recording_cli
+    import amiro.commands.robot as robot_cli
+    import amiro.commands.scenarios as scenarios_cli
     import amiro.serve as serve_cli
 
     parser = _Parser(

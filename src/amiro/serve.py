@@ -16,7 +16,7 @@ import threading
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from amiro.cli_support import add_command
+from amiro.commands.support import add_command
 
 if TYPE_CHECKING:
     from types import FrameType
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from fastapi import FastAPI
     from pydantic import SecretStr
 
-    from amiro.cli_support import Subcommands
+    from amiro.commands.support import Subcommands
     from amiro.core.clock import Clock
     from amiro.core.runtime import Runtime
     from amiro.system import System, SystemConfig

@@ -23,14 +23,14 @@ from amiro.activity.pose import PoseDetection, PoseEstimator, PoseOnnxEstimator
 from amiro.activity.recognizer import SkeletonActivityRecognizer
 from amiro.activity.render import SOURCES, depth_image, project
 from amiro.activity.skeleton import JOINTS, NUM_JOINTS, FloatArray, J
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import BoundingBox2D, CameraInfo, Header, Image, JointState, Point
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
-from amiro.perception.camera_feed import CameraFeed
 from amiro.perception.onnx_standins import fixed_answer_model
-from amiro.robot import ports
 from amiro.robot.camera import Camera
+from amiro.robot.camera_feed import CameraFeed
 
 INFO = Camera().info(0.0)
 MODEL = ActivityModel()
@@ -59,10 +59,10 @@ class Player(Node):
         self.joints, self.pitch, self.index = joints, pitch, 0
 
     def on_start(self) -> None:
-        self.rgb = self.create_publisher(ports.IMAGE, Image)
-        self.depth = self.create_publisher(ports.DEPTH, Image)
-        self.info = self.create_publisher(ports.CAMERA_INFO, CameraInfo)
-        self.head = self.create_publisher(ports.JOINT_STATES, JointState)
+        self.rgb = self.create_publisher(names.IMAGE, Image)
+        self.depth = self.create_publisher(names.DEPTH, Image)
+        self.info = self.create_publisher(names.CAMERA_INFO, CameraInfo)
+        self.head = self.create_publisher(names.JOINT_STATES, JointState)
         self.create_timer(1.0 / FPS, self.play)
 
     def play(self) -> None:
@@ -71,7 +71,7 @@ class Player(Node):
         rgb = np.zeros((INFO.height, INFO.width, 3), dtype=np.uint8)
         rgb[0, 0, 0] = i
         depth = depth_image(self.joints[i], INFO).astype(np.float32)
-        self.head.publish(JointState(header, (ports.HEAD_PITCH,), (self.pitch,)))
+        self.head.publish(JointState(header, (names.HEAD_PITCH,), (self.pitch,)))
         self.rgb.publish(Image(header, INFO.height, INFO.width, "rgb8", rgb))
         self.depth.publish(Image(header, depth.shape[0], depth.shape[1], "32FC1", depth))
         self.info.publish(INFO)

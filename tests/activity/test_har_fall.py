@@ -5,9 +5,10 @@ from typing import Any
 import amiro.behavior.tasks  # noqa: F401 - registers the task types
 from amiro.activity.fall import FallMonitorNode
 from amiro.activity.ports import ActivityReading
-from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, EngineConfig
+from amiro.behavior.engine import BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry
 from amiro.behavior.loader import load_behavior_data
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import BehaviorEvent
 from amiro.core.runtime import Runtime
@@ -52,7 +53,7 @@ def _home() -> tuple[Runtime, BehaviorEngine, FallMonitorNode, ScriptedRecognize
 def test_a_confirmed_fall_preempts_the_chore_once_and_the_chore_resumes() -> None:
     runtime, engine, monitor, recognizer = _home()
     events: list[BehaviorEvent] = []
-    runtime.bus.subscribe(EVENTS_TOPIC, BehaviorEvent, events.append)
+    runtime.bus.subscribe(names.EVENTS, BehaviorEvent, events.append)
     chore = engine.submit(load_behavior_data(_waiting("chore", 1, 20.0)))
     runtime.spin_for(2.0)
     assert set(recognizer.asked) == {"maria", "ion"} and monitor.alerts == []

@@ -5,7 +5,8 @@ from typing import Any
 import pytest
 from behavior_fakes import EPS, FakeBoom, FakeWait, FakeWork, make_engine, order, run_all
 
-from amiro.behavior import EVENTS_TOPIC, End, RunStatus, Task, TaskError, TaskGraph
+from amiro.behavior import End, RunStatus, Task, TaskError, TaskGraph
+from amiro.core import names
 from amiro.core.messages import BehaviorEvent
 
 
@@ -301,7 +302,7 @@ def test_cancel_graph_queued_running_cancellable_and_atomic() -> None:
 def test_events_are_published_in_order_on_the_events_topic() -> None:
     runtime, engine = make_engine()
     got: list[BehaviorEvent] = []
-    runtime.bus.subscribe(EVENTS_TOPIC, BehaviorEvent, got.append, depth=1000)
+    runtime.bus.subscribe(names.EVENTS, BehaviorEvent, got.append, depth=1000)
     engine.submit(chain("A", 1, ("a1", FakeWork(0.1)), ("a2", FakeWork(0.1, succeed=False))))
     run_all(runtime, engine)
     runtime.spin_for(0.1)

@@ -10,9 +10,8 @@ from behavior_fakes import FakeWork, run_all
 
 from amiro.behavior import BehaviorEngine, End, EngineConfig, HandlerRegistry, TaskGraph
 from amiro.behavior.checkpoint import carried, with_checkpoint
-from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import (
     Acknowledgement,
@@ -26,9 +25,7 @@ from amiro.core.messages import (
     Twist,
 )
 from amiro.core.runtime import Runtime
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
-from amiro.navigation.localization import INITIAL_POSE_TOPIC
-from amiro.ros2.health import NotificationLedger
+from amiro.deploy.health import NotificationLedger
 
 
 class FakeNavigation:
@@ -68,8 +65,8 @@ class Edge:
         self.events: list[BehaviorEvent] = []
         self.initial_poses: list[PoseStamped] = []
         bus = self.runtime.bus
-        bus.subscribe(EVENTS_TOPIC, BehaviorEvent, self.events.append, depth=1000)
-        bus.subscribe(INITIAL_POSE_TOPIC, PoseStamped, self.initial_poses.append)
+        bus.subscribe(names.EVENTS, BehaviorEvent, self.events.append, depth=1000)
+        bus.subscribe(names.INITIAL_POSE, PoseStamped, self.initial_poses.append)
         self.runtime.start()
 
     def odom(self, pose: Pose2D) -> None:
@@ -82,7 +79,7 @@ class Edge:
         note = Notification(ident, "maria", "visit", 2)
         if checkpoint is not None:
             note = with_checkpoint(note, checkpoint)
-        self.runtime.bus.publish(NOTIFICATIONS_TOPIC, note)
+        self.runtime.bus.publish(names.NOTIFICATIONS, note)
 
     def finish(self) -> None:
         """Deliver what was published, then run until every behaviour has ended."""
@@ -164,8 +161,8 @@ def test_the_ledger_sends_the_latest_checkpoint_back_with_the_pending_notificati
     ledger = runtime.add(NotificationLedger(edge="edge", resend_delay_s=1.0))
     sent: list[Notification] = []
     events: list[BehaviorEvent] = []
-    runtime.bus.subscribe(NOTIFICATIONS_TOPIC, Notification, sent.append, depth=100)
-    runtime.bus.subscribe(EVENTS_TOPIC, BehaviorEvent, events.append, depth=100)
+    runtime.bus.subscribe(names.NOTIFICATIONS, Notification, sent.append, depth=100)
+    runtime.bus.subscribe(names.EVENTS, BehaviorEvent, events.append, depth=100)
     runtime.start()
     bus = runtime.bus
 
@@ -173,13 +170,13 @@ def test_the_ledger_sends_the_latest_checkpoint_back_with_the_pending_notificati
         detail = {"id": ident, "checkpoint": {"task": task}}
         return BehaviorEvent(runtime.clock.now(), "behavior_checkpoint", "visit#1", task, detail)
 
-    bus.publish(NOTIFICATIONS_TOPIC, Notification("n1", "maria", "visit", 2))
+    bus.publish(names.NOTIFICATIONS, Notification("n1", "maria", "visit", 2))
     runtime.spin_for(0.1)
-    bus.publish(EVENTS_TOPIC, checkpoint_event("n1", "find"))
-    bus.publish(EVENTS_TOPIC, checkpoint_event("n1", "go"))
-    bus.publish(EVENTS_TOPIC, checkpoint_event("n7", "go"))  # not pending: not kept
+    bus.publish(names.EVENTS, checkpoint_event("n1", "find"))
+    bus.publish(names.EVENTS, checkpoint_event("n1", "go"))
+    bus.publish(names.EVENTS, checkpoint_event("n7", "go"))  # not pending: not kept
     bus.publish(
-        EVENTS_TOPIC, BehaviorEvent(runtime.clock.now(), "node_back", detail={"node": "edge"})
+        names.EVENTS, BehaviorEvent(runtime.clock.now(), "node_back", detail={"node": "edge"})
     )
     runtime.spin_for(1.5)
     assert ledger.checkpoints == {"n1": {"task": "go"}}
@@ -188,6 +185,6 @@ def test_the_ledger_sends_the_latest_checkpoint_back_with_the_pending_notificati
     redelivered = [e for e in events if e.type == "notification_redelivered"]
     assert [e.detail for e in redelivered] == [{"id": "n1", "resume_task": "go"}]
 
-    bus.publish(ACK_TOPIC, Acknowledgement("n1", "done", "2026-01-01T00:00:00"))
+    bus.publish(names.ACK, Acknowledgement("n1", "done", "2026-01-01T00:00:00"))
     runtime.spin_for(0.1)
     assert ledger.pending == {} and ledger.checkpoints == {}

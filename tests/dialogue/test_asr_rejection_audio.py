@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from amiro.commands.dialogue import register
 from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
 from amiro.dialogue.asr import DEFAULT_REJECT_BELOW, ConfidenceGate, gate
@@ -21,7 +22,6 @@ from amiro.dialogue.asr_testset import (
     write_noise_clips,
     write_test_set,
 )
-from amiro.dialogue.cli import register
 from amiro.dialogue.config import AsrConfig, DialogueConfig
 from amiro.dialogue.domain import shipped_domain
 from amiro.dialogue.manager import DialogueManager

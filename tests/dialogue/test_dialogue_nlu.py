@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
+from amiro.commands.dialogue import register
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
-from amiro.dialogue.cli import register
 from amiro.dialogue.nlu_eval import evaluate, read_jsonl
 from amiro.dialogue.training_data import parse_training_data
 from amiro.dialogue.understanding import Nlu

@@ -125,7 +125,7 @@ def test_clear_errors() -> None:
 def test_cli_asr_evaluate(recordings: Path, capsys: pytest.CaptureFixture[str]) -> None:
     import argparse
 
-    from amiro.dialogue.cli import register
+    from amiro.commands.dialogue import register
 
     parser = argparse.ArgumentParser()
     register(parser.add_subparsers())
@@ -138,7 +138,7 @@ def test_cli_asr_evaluate(recordings: Path, capsys: pytest.CaptureFixture[str]) 
 def test_cli_asr_synthesize(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     import argparse
 
-    from amiro.dialogue.cli import register
+    from amiro.commands.dialogue import register
 
     (tmp_path / "commands.txt").write_text("# two\ngo to maria\n\nyes please\n", encoding="utf-8")
     parser = argparse.ArgumentParser()

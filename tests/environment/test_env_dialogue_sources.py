@@ -7,6 +7,7 @@ from datetime import date
 
 import pytest
 
+from amiro.core import names
 from amiro.core.bus import Bus
 from amiro.core.clock import SimClock
 from amiro.core.config import parse
@@ -21,7 +22,6 @@ from amiro.environment.health_store import HealthStore
 from amiro.environment.messages import DeviceCommand, HealthMeasurement
 from amiro.environment.reminders import RemindersConfig
 from amiro.environment.rules import HealthRule
-from amiro.environment.topics import DEVICE_COMMAND_TOPIC
 
 TODAY = date(2026, 7, 15)  # the simulated clock's first day
 
@@ -157,9 +157,9 @@ def test_the_agenda_of_a_day_in_the_homes_time_zone() -> None:
 
 def test_device_commands_go_on_the_bus_and_unknown_ones_are_refused() -> None:
     bus = Bus()
-    sent = bus.subscribe(DEVICE_COMMAND_TOPIC, DeviceCommand, lambda _: None)
+    sent = bus.subscribe(names.DEVICE_COMMAND, DeviceCommand, lambda _: None)
     control = BusDeviceControl(
-        bus.publisher(DEVICE_COMMAND_TOPIC, DeviceCommand), "flat", ["kitchen"]
+        bus.publisher(names.DEVICE_COMMAND, DeviceCommand), "flat", ["kitchen"]
     )
     assert control.set("kitchen", "lights", "on")
     assert not control.set("garage", "lights", "on")

@@ -6,13 +6,12 @@ from pathlib import Path
 
 import pytest
 
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.config import ConfigError, parse
 from amiro.core.messages import Acknowledgement, Notification, SensorReading
 from amiro.core.runtime import Runtime
 from amiro.environment.ledger import LedgerNode, NotificationLedger
 from amiro.environment.reminders import RemindersConfig, RemindersNode
-from amiro.environment.topics import NOTIFICATIONS_TOPIC, SENSORS_TOPIC
 
 # The simulated clock starts on 2026-07-15 at 10:00 UTC.
 CONFIG = {
@@ -40,7 +39,7 @@ CONFIG = {
 
 def reading(rt: Runtime, value: float) -> None:
     rt.bus.publish(
-        SENSORS_TOPIC,
+        names.SENSORS,
         SensorReading("home", "living_room", "temperature", value, "C", rt.clock.now()),
     )
 
@@ -50,7 +49,7 @@ def test_daily_conditional_and_calendar_reminders() -> None:
     rt.add(RemindersNode(parse(RemindersConfig, CONFIG, "reminders")))
     notes: list[tuple[float, Notification]] = []
     rt.bus.subscribe(
-        NOTIFICATIONS_TOPIC, Notification, lambda n: notes.append((rt.clock.now(), n)), 100
+        names.NOTIFICATIONS, Notification, lambda n: notes.append((rt.clock.now(), n)), 100
     )
     rt.start()
     reading(rt, 25.0)
@@ -85,9 +84,9 @@ def test_pending_notifications_survive_a_restart_and_acks_are_stored(tmp_path: P
     rt.add(LedgerNode(NotificationLedger(url)))
     rt.start()
     for i in range(3):
-        rt.bus.publish(NOTIFICATIONS_TOPIC, Notification(f"n{i}", "maria", "hydration", i))
+        rt.bus.publish(names.NOTIFICATIONS, Notification(f"n{i}", "maria", "hydration", i))
     rt.spin_for(1.0)
-    rt.bus.publish(ACK_TOPIC, Acknowledgement("n1", "done", "2026-07-15T10:00:01+00:00"))
+    rt.bus.publish(names.ACK, Acknowledgement("n1", "done", "2026-07-15T10:00:01+00:00"))
     rt.spin_for(1.0)
     rt.stop()  # the process ends with n0 and n2 unanswered
 
@@ -95,7 +94,7 @@ def test_pending_notifications_survive_a_restart_and_acks_are_stored(tmp_path: P
     ledger = NotificationLedger(url)
     rt2.add(LedgerNode(ledger))
     replayed: list[Notification] = []
-    rt2.bus.subscribe(NOTIFICATIONS_TOPIC, Notification, replayed.append, 100)
+    rt2.bus.subscribe(names.NOTIFICATIONS, Notification, replayed.append, 100)
     rt2.start()
     rt2.spin_for(1.0)
     assert sorted(n.id for n in replayed) == ["n0", "n2"]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from amiro.core import names
 from amiro.core.messages import Notification, SensorReading
 from amiro.core.runtime import Runtime
 from amiro.environment.rules import RulesNode, ThresholdRule
@@ -12,20 +13,19 @@ from amiro.environment.simulated import (
     SimulatedSensorsConfig,
     SimulatedSensorsNode,
 )
-from amiro.environment.topics import NOTIFICATIONS_TOPIC, SENSORS_TOPIC
 
 
 def setup(rule: ThresholdRule) -> tuple[Runtime, list[Notification]]:
     rt = Runtime()
     rt.add(RulesNode([rule]))
     notes: list[Notification] = []
-    rt.bus.subscribe(NOTIFICATIONS_TOPIC, Notification, notes.append, depth=100)
+    rt.bus.subscribe(names.NOTIFICATIONS, Notification, notes.append, depth=100)
     rt.start()
     return rt, notes
 
 
 def reading(rt: Runtime, value: float, room: str = "living_room", sensor: str = "temperature"):
-    rt.bus.publish(SENSORS_TOPIC, SensorReading("home", room, sensor, value, "C", rt.clock.now()))
+    rt.bus.publish(names.SENSORS, SensorReading("home", room, sensor, value, "C", rt.clock.now()))
     rt.spin_for(1.0)
 
 
@@ -80,7 +80,7 @@ def test_simulated_sensors_follow_their_timeline() -> None:
     )
     node = rt.add(SimulatedSensorsNode(["kitchen", "bedroom"], cfg))
     got: list[SensorReading] = []
-    rt.bus.subscribe(SENSORS_TOPIC, SensorReading, got.append, depth=1000)
+    rt.bus.subscribe(names.SENSORS, SensorReading, got.append, depth=1000)
     rt.start()
     rt.spin_for(11.0)
     assert {(r.room, r.sensor) for r in got} == {

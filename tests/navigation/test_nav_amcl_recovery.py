@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
@@ -20,7 +21,7 @@ from amiro.core.runtime import Runtime
 from amiro.home.world import World, default_home_path
 from amiro.navigation.amcl import ParticleFilter
 from amiro.navigation.likelihood import LikelihoodField
-from amiro.navigation.localization import GLOBAL_LOCALIZATION_SERVICE, AmclLocalizer
+from amiro.navigation.localization import AmclLocalizer
 from amiro.navigation.poses import between, compose
 from amiro.sim.base import Odometry
 from amiro.sim.carmen_log import drive
@@ -115,6 +116,6 @@ def test_global_localization_service_spreads_the_belief_on_the_bus() -> None:
     rt.add(_Host(localizer))
     rt.start()
     assert localizer.pf is not None and localizer.pf.spread() < 0.3
-    count = rt.bus.call(GLOBAL_LOCALIZATION_SERVICE, None)
+    count = rt.bus.call(names.GLOBAL_LOCALIZATION, None)
     assert count == localizer.pf.params.global_particles == len(localizer.pf.particles)
     assert localizer.pf.spread() > 2.0

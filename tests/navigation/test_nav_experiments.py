@@ -6,10 +6,10 @@ import argparse
 
 import pytest
 
+from amiro.commands.navigation import register
 from amiro.core.config import ConfigError
 from amiro.core.messages import Pose2D
-from amiro.navigation.cli import register
-from amiro.navigation.experiments import (
+from amiro.evaluation.navigation_experiments import (
     EXPERIMENTS,
     Experiment,
     RunResult,

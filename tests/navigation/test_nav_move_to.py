@@ -11,6 +11,7 @@ from functools import cache
 import numpy as np
 import pytest
 
+from amiro.core import names
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.clock import SimClock
 from amiro.core.geometry import wrap_angle as wrap
@@ -19,8 +20,8 @@ from amiro.core.messages import Path, Point, Pose2D, String, Twist
 from amiro.core.runtime import Runtime
 from amiro.home.world import default_home_path
 from amiro.navigation.config import NavigationConfig
-from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToNode
-from amiro.navigation.stack import GROUND_TRUTH_TOPIC, build_navigation
+from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToNode
+from amiro.navigation.stack import build_navigation
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 
@@ -47,7 +48,7 @@ class Rig:
         return self.rt.clock.now()
 
     def goal(self, goal: MoveToGoal) -> GoalHandle[MoveToGoal, MoveToFeedback, object]:
-        return self.rt.bus.send_goal(MOVE_TO_ACTION, goal)
+        return self.rt.bus.send_goal(names.MOVE_TO, goal)
 
     def run(self, handle: GoalHandle[MoveToGoal, MoveToFeedback, object], timeout: float) -> float:
         t0 = self.now()
@@ -66,7 +67,7 @@ def _rig(sim_cfg: SimConfig | None = None, seed: int = 3) -> Rig:
     nav = rt.add(build_navigation(_map(), places, CFG))
     rig = Rig(rt, sim, nav)
     rt.bus.subscribe("/cmd_vel", Twist, lambda m: rig.cmds.append((rig.now(), m)), depth=1000)
-    rt.bus.subscribe(GROUND_TRUTH_TOPIC, Pose2D, rig.truth.append, depth=1000)
+    rt.bus.subscribe(names.GROUND_TRUTH, Pose2D, rig.truth.append, depth=1000)
     rt.bus.subscribe("/amiro/navigation/path", Path, rig.paths.append, depth=100)
     rt.start()
     rt.spin_for(0.06)  # one ground-truth pose, no lidar scan yet (first at 0.1 s)
@@ -246,7 +247,7 @@ def test_a_goal_sent_before_the_first_pose_waits_for_it() -> None:
     nav = rt.add(build_navigation(_map(), places, CFG))
     rt.start()
     assert nav.pose is None
-    handle = rt.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place="hallway"))
+    handle = rt.bus.send_goal(names.MOVE_TO, MoveToGoal(place="hallway"))
     assert rt.spin_until(lambda: handle.done, 120.0)
     assert handle.status is GoalStatus.SUCCEEDED
     assert sim.robot.true_pose.distance_to(sim.world.place("hallway")) < 0.35
@@ -257,7 +258,7 @@ def test_without_any_pose_the_goal_ends_no_pose_after_the_wait() -> None:
     places = {"dock": Pose2D(1.0, 1.0), "hallway": Pose2D(2.0, 4.2)}
     nav = rt.add(build_navigation(_map(), places, CFG))  # no simulator: no pose ever
     rt.start()
-    handle = rt.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place="hallway"))
+    handle = rt.bus.send_goal(names.MOVE_TO, MoveToGoal(place="hallway"))
     rt.spin_for(nav.pose_wait_s - 0.5)
     assert not handle.done
     rt.spin_for(1.0)

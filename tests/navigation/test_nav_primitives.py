@@ -7,21 +7,14 @@ from typing import Any
 
 import pytest
 
+from amiro.core import names
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.clock import SimClock
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import String
 from amiro.core.runtime import Runtime
-from amiro.navigation.move_to import EMERGENCY_STOP_TOPIC
 from amiro.navigation.poses import between
-from amiro.navigation.primitives import (
-    FORWARD_ACTION,
-    ROTATE_ACTION,
-    ForwardGoal,
-    PrimitiveResult,
-    PrimitivesNode,
-    RotateGoal,
-)
+from amiro.navigation.primitives import ForwardGoal, PrimitiveResult, PrimitivesNode, RotateGoal
 from amiro.sim.config import PoseSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 
@@ -47,13 +40,13 @@ def _run(rt: Runtime, handle: GoalHandle[Any, Any, Any], timeout: float = 30.0) 
 def test_forward_then_rotate_reach_their_targets() -> None:
     rt, sim = _rig()
     start = sim.robot.true_pose
-    fwd = rt.bus.send_goal(FORWARD_ACTION, ForwardGoal(1.0))
+    fwd = rt.bus.send_goal(names.FORWARD, ForwardGoal(1.0))
     assert _run(rt, fwd).reason == "done"
     assert fwd.status is GoalStatus.SUCCEEDED
     moved = between(start, sim.robot.true_pose)
     assert moved.x == pytest.approx(1.0, abs=0.05) and abs(moved.y) < 0.05
     before = sim.robot.true_pose
-    rot = rt.bus.send_goal(ROTATE_ACTION, RotateGoal(-math.pi / 2))
+    rot = rt.bus.send_goal(names.ROTATE, RotateGoal(-math.pi / 2))
     _run(rt, rot)
     assert rot.status is GoalStatus.SUCCEEDED
     turned = wrap_angle(sim.robot.true_pose.theta - before.theta)
@@ -64,7 +57,7 @@ def test_forward_then_rotate_reach_their_targets() -> None:
 
 def test_cancel_stops_part_way() -> None:
     rt, sim = _rig()
-    handle = rt.bus.send_goal(FORWARD_ACTION, ForwardGoal(2.0))
+    handle = rt.bus.send_goal(names.FORWARD, ForwardGoal(2.0))
     rt.spin_for(2.0)
     handle.cancel()
     result = _run(rt, handle)
@@ -77,8 +70,8 @@ def test_cancel_stops_part_way() -> None:
 
 def test_emergency_stop_holds_the_motion_until_released() -> None:
     rt, sim = _rig()
-    estop = rt.bus.publisher(EMERGENCY_STOP_TOPIC, String)
-    handle = rt.bus.send_goal(ROTATE_ACTION, RotateGoal(math.pi))
+    estop = rt.bus.publisher(names.EMERGENCY_STOP, String)
+    handle = rt.bus.send_goal(names.ROTATE, RotateGoal(math.pi))
     rt.spin_for(0.5)
     estop.publish(String("true"))
     rt.spin_for(0.5)
@@ -94,7 +87,7 @@ def test_emergency_stop_holds_the_motion_until_released() -> None:
 
 def test_driving_into_a_wall_fails_blocked_without_touching_it() -> None:
     rt, sim = _rig()
-    handle = rt.bus.send_goal(FORWARD_ACTION, ForwardGoal(-3.0))  # the wall is ~1.5 m behind
+    handle = rt.bus.send_goal(names.FORWARD, ForwardGoal(-3.0))  # the wall is ~1.5 m behind
     result = _run(rt, handle, 60.0)
     assert handle.status is GoalStatus.ABORTED and result.reason == "blocked"
     assert -3.0 < result.achieved < 0.0
@@ -103,6 +96,6 @@ def test_driving_into_a_wall_fails_blocked_without_touching_it() -> None:
 
 def test_bad_goals_are_rejected() -> None:
     rt, _ = _rig()
-    handle = rt.bus.send_goal(ROTATE_ACTION, RotateGoal(math.nan))
+    handle = rt.bus.send_goal(names.ROTATE, RotateGoal(math.nan))
     rt.spin_for(0.1)
     assert handle.status is GoalStatus.REJECTED

@@ -12,17 +12,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import BoundingBox2D, CameraInfo, Detection2D, Header, Image, Pose2D
 from amiro.core.runtime import Runtime
-from amiro.perception.camera_feed import CameraFeed
 from amiro.perception.camera_finder import CameraPeopleFinder
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.face_samples import in_scene, sample_face, views
 from amiro.perception.faces import DlibFaceEmbedder, FaceGallery
 from amiro.perception.ports import Frame
-from amiro.robot import ports
 from amiro.robot.camera import Camera
+from amiro.robot.camera_feed import CameraFeed
 
 BOX = BoundingBox2D(412.0, 240.0, 224.0, 480.0)  # the portrait's columns, the whole height
 
@@ -49,9 +49,9 @@ def test_the_face_in_the_box_names_the_track(
     rgb = in_scene(sample_face(face), at=(300, 0))
     depth = np.full((480, 640), 1.2, dtype=np.float32)
     header = Header(0.0, "camera")
-    rt.bus.publisher(ports.IMAGE, Image).publish(Image(header, 480, 640, "rgb8", rgb))
-    rt.bus.publisher(ports.DEPTH, Image).publish(Image(header, 480, 640, "32FC1", depth))
-    rt.bus.publisher(ports.CAMERA_INFO, CameraInfo).publish(Camera().info(0.0))
+    rt.bus.publisher(names.IMAGE, Image).publish(Image(header, 480, 640, "rgb8", rgb))
+    rt.bus.publisher(names.DEPTH, Image).publish(Image(header, 480, 640, "32FC1", depth))
+    rt.bus.publisher(names.CAMERA_INFO, CameraInfo).publish(Camera().info(0.0))
     rt.spin_for(0.05)
     finder = CameraPeopleFinder(
         feed, OnePerson(), PerceptionConfig(backend="camera"), lambda: Pose2D(), gallery

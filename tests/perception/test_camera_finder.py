@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.config import ConfigError
 from amiro.core.messages import (
@@ -26,7 +27,6 @@ from amiro.core.messages import (
     Pose2D,
 )
 from amiro.core.runtime import Runtime
-from amiro.perception.camera_feed import CameraFeed, RgbdFrame, depth_metres, rgb_pixels
 from amiro.perception.camera_finder import CameraPeopleFinder, head_crop
 from amiro.perception.config import CameraSection, PerceptionConfig
 from amiro.perception.hog import HogPeopleDetector
@@ -34,8 +34,8 @@ from amiro.perception.onnx_standins import fixed_answer_model
 from amiro.perception.onnx_yolo import YoloOnnxDetector
 from amiro.perception.ports import Frame
 from amiro.perception.synthetic_scene import Cylinder, Scene, render
-from amiro.robot import ports
 from amiro.robot.camera import Camera
+from amiro.robot.camera_feed import CameraFeed, RgbdFrame, depth_metres, rgb_pixels
 
 CAMERA = Camera()
 
@@ -48,14 +48,14 @@ def publish(
     header = Header(stamp, "camera")
     h, w = scene.depth.shape
     depth = scene.depth[::depth_scale, ::depth_scale].astype(np.float32)
-    rt.bus.publisher(ports.IMAGE, Image).publish(Image(header, h, w, "rgb8", scene.rgb))
-    rt.bus.publisher(ports.DEPTH, Image).publish(
+    rt.bus.publisher(names.IMAGE, Image).publish(Image(header, h, w, "rgb8", scene.rgb))
+    rt.bus.publisher(names.DEPTH, Image).publish(
         Image(header, depth.shape[0], depth.shape[1], "32FC1", depth)
     )
-    rt.bus.publisher(ports.CAMERA_INFO, CameraInfo).publish(CAMERA.info(stamp))
+    rt.bus.publisher(names.CAMERA_INFO, CameraInfo).publish(CAMERA.info(stamp))
     if yaw is not None and pitch is not None:
-        rt.bus.publisher(ports.JOINT_STATES, JointState).publish(
-            JointState(header, (ports.HEAD_YAW, ports.HEAD_PITCH), (yaw, pitch))
+        rt.bus.publisher(names.JOINT_STATES, JointState).publish(
+            JointState(header, (names.HEAD_YAW, names.HEAD_PITCH), (yaw, pitch))
         )
     rt.spin_for(0.05)
 
@@ -191,9 +191,9 @@ def test_images_are_converted_and_bad_encodings_dropped() -> None:
     feed = rt.add(CameraFeed())
     rt.start()
     header = Header(0.0, "camera")
-    rt.bus.publisher(ports.IMAGE, Image).publish(Image(header, 2, 3, "yuv422", bgr))
-    rt.bus.publisher(ports.DEPTH, Image).publish(Image(header, 2, 2, "16UC1", mm))
-    rt.bus.publisher(ports.CAMERA_INFO, CameraInfo).publish(CAMERA.info(0.0))
+    rt.bus.publisher(names.IMAGE, Image).publish(Image(header, 2, 3, "yuv422", bgr))
+    rt.bus.publisher(names.DEPTH, Image).publish(Image(header, 2, 2, "16UC1", mm))
+    rt.bus.publisher(names.CAMERA_INFO, CameraInfo).publish(CAMERA.info(0.0))
     rt.spin_for(0.05)
     assert feed.latest() is None and feed.bad_frames == 1
 
@@ -203,12 +203,12 @@ def test_depth_far_from_the_image_in_time_is_not_paired() -> None:
     feed = rt.add(CameraFeed(max_skew_s=0.1))
     rt.start()
     rgb, depth = np.zeros((4, 4, 3), np.uint8), np.ones((4, 4), np.float32)
-    rt.bus.publisher(ports.DEPTH, Image).publish(Image(Header(0.0), 4, 4, "32FC1", depth))
-    rt.bus.publisher(ports.CAMERA_INFO, CameraInfo).publish(CAMERA.info(0.0))
-    rt.bus.publisher(ports.IMAGE, Image).publish(Image(Header(0.5), 4, 4, "rgb8", rgb))
+    rt.bus.publisher(names.DEPTH, Image).publish(Image(Header(0.0), 4, 4, "32FC1", depth))
+    rt.bus.publisher(names.CAMERA_INFO, CameraInfo).publish(CAMERA.info(0.0))
+    rt.bus.publisher(names.IMAGE, Image).publish(Image(Header(0.5), 4, 4, "rgb8", rgb))
     rt.spin_for(0.05)
     assert feed.latest() is None
-    rt.bus.publisher(ports.DEPTH, Image).publish(Image(Header(0.45), 4, 4, "32FC1", depth))
+    rt.bus.publisher(names.DEPTH, Image).publish(Image(Header(0.45), 4, 4, "32FC1", depth))
     rt.spin_for(0.05)
     frame = feed.latest()
     assert frame is not None and frame.stamp == 0.5

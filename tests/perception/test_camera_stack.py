@@ -11,16 +11,16 @@ import pytest
 from amiro.activity.camera_skeletons import CameraSkeletonSource
 from amiro.activity.dataset import subject_body, window
 from amiro.activity.render import SOURCES, depth_image, project
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.config import ConfigError
 from amiro.core.messages import CameraInfo, Header, Image, Pose2D
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
-from amiro.perception.camera_stack import build_camera_modules
 from amiro.perception.onnx_standins import fixed_answer_model
-from amiro.robot import ports
 from amiro.robot.camera import Camera
 from amiro.system import SystemConfig
+from amiro.system.camera import build_camera_modules
 
 INFO = Camera().info(0.0)
 COCO_SOURCE = SOURCES["coco17"]  # the NTU joint under each COCO-17 keypoint
@@ -34,8 +34,8 @@ class StillCamera(Node):
         self.depth = depth.astype(np.float32)
 
     def on_start(self) -> None:
-        self.pubs = [self.create_publisher(t, Image) for t in (ports.IMAGE, ports.DEPTH)]
-        self.info = self.create_publisher(ports.CAMERA_INFO, CameraInfo)
+        self.pubs = [self.create_publisher(t, Image) for t in (names.IMAGE, names.DEPTH)]
+        self.info = self.create_publisher(names.CAMERA_INFO, CameraInfo)
         self.create_timer(1.0 / 15.0, self.play)
 
     def play(self) -> None:

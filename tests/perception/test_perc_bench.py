@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from amiro.cli import _Parser
+from amiro.commands.perception import register
 from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D
-from amiro.perception.cli import register
 from amiro.perception.estimation import CameraGeometry, Views
 from amiro.perception.locate import locate_people
 from amiro.robot.camera import Camera

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from amiro.cli import _Parser
-from amiro.perception.cli import register
-from amiro.perception.evaluation import evaluate
+from amiro.commands.perception import register
+from amiro.evaluation.perception_evaluate import evaluate
 from amiro.sim.rgbd_dataset import DatasetSpec, generate
 
 

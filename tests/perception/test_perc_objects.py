@@ -14,11 +14,11 @@ from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Point
 from amiro.core.runtime import Runtime
 from amiro.perception.config import PerceptionConfig
-from amiro.perception.object_finder import SimObjectFinder
 from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector
 from amiro.perception.sim_objects import ObjectObservation, household_objects
 from amiro.sim.config import SimConfig
+from amiro.sim.object_finder import SimObjectFinder
 from amiro.sim.simulator import Simulation, build_sim
 
 

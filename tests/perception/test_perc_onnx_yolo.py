@@ -17,7 +17,8 @@ import pytest
 from onnx import TensorProto, helper, numpy_helper
 
 from amiro.core.config import ConfigError
-from amiro.perception.onnx_yolo import YoloOnnxDetector, coco_labels, letterbox
+from amiro.core.vision import letterbox
+from amiro.perception.onnx_yolo import YoloOnnxDetector, coco_labels
 from amiro.perception.ports import Frame
 
 PERSON, BOTTLE, CUP, COUCH = 0, 39, 41, 57

@@ -11,13 +11,13 @@ from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Point
 from amiro.core.runtime import Runtime
 from amiro.perception.config import FaceSection, PerceptionConfig
-from amiro.perception.oracle import OraclePeopleFinder
 from amiro.perception.ports import Frame
 from amiro.perception.sim_detector import SimDetector
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.stack import SimPeopleFinder, build_people_finder
 from amiro.robot.camera import CameraObservation
 from amiro.sim.config import SimConfig
+from amiro.sim.perception_oracle import OraclePeopleFinder
 from amiro.sim.simulator import build_sim
 
 

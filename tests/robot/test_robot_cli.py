@@ -8,8 +8,8 @@ import json
 import pytest
 from naoqi_fakes import Recorder
 
+from amiro.commands.robot import register
 from amiro.core.config import ConfigError
-from amiro.robot.cli import register
 
 
 def _amiro(argv: list[str]) -> int:

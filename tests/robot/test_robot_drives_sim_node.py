@@ -32,7 +32,7 @@ def test_adapter_reads_and_drives_the_simulator_process(robot_domain: int, tmp_p
     profile = load_profile(tmp_path / "amiro_sim.yaml")
     env = {**os.environ, **ros_environment(robot_domain)}
     sim = subprocess.Popen(
-        [sys.executable, "-m", "amiro.ros2", "sim", "--ros2", "--json", "--duration", "60"],
+        [sys.executable, "-m", "amiro.cli", "sim", "--ros2", "--json", "--duration", "60"],
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

@@ -8,12 +8,12 @@ import math
 import pytest
 
 from amiro.cli import main
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import CameraInfo, Image
 from amiro.core.runtime import Runtime
-from amiro.robot import ports
-from amiro.ros2.config import NodeConfig, SimCameraSection
-from amiro.ros2.sim_camera import SimCameraNode
+from amiro.deploy.config import NodeConfig, SimCameraSection
+from amiro.deploy.sim_camera import SimCameraNode
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import build_sim
 
@@ -34,18 +34,18 @@ def test_rendered_frames_show_people_in_sight_at_their_depth() -> None:
     runtime = Runtime(SimClock(), seed=1)
     sim = build_sim(runtime, SIM)
     node = runtime.add(SimCameraNode(sim, SimCameraSection(rate_hz=5.0, width=160, height=120)))
-    got: dict[str, list[object]] = {t: [] for t in (ports.IMAGE, ports.DEPTH, ports.CAMERA_INFO)}
+    got: dict[str, list[object]] = {t: [] for t in (names.IMAGE, names.DEPTH, names.CAMERA_INFO)}
     for topic, kind in (
-        (ports.IMAGE, Image),
-        (ports.DEPTH, Image),
-        (ports.CAMERA_INFO, CameraInfo),
+        (names.IMAGE, Image),
+        (names.DEPTH, Image),
+        (names.CAMERA_INFO, CameraInfo),
     ):
         runtime.bus.subscribe(topic, kind, got[topic].append)
     runtime.start()
     runtime.spin_for(1.0)
     assert [(c.x, c.y) for c in node.people_in_sight()] == [(6.0, 4.2)]
     assert 4 <= node.frames <= 6 and all(len(v) == node.frames for v in got.values())
-    rgb, depth, info = got[ports.IMAGE][-1], got[ports.DEPTH][-1], got[ports.CAMERA_INFO][-1]
+    rgb, depth, info = got[names.IMAGE][-1], got[names.DEPTH][-1], got[names.CAMERA_INFO][-1]
     assert isinstance(rgb, Image) and isinstance(depth, Image) and isinstance(info, CameraInfo)
     sizes = {(rgb.width, rgb.height), (depth.width, depth.height), (info.width, info.height)}
     assert sizes == {(160, 120)}
@@ -60,7 +60,7 @@ def test_sim_process_camera_adds_the_camera_topics_only_when_configured() -> Non
     plain = NodeConfig(role="sim")
     rendered = NodeConfig(role="sim", camera=SimCameraSection())
     added = set(rendered.topics_out()) - set(plain.topics_out())
-    assert added == {ports.IMAGE, ports.DEPTH}  # camera_info is a sim default already
+    assert added == {names.IMAGE, names.DEPTH}  # camera_info is a sim default already
 
 
 @pytest.mark.parametrize("size", ["320", "axb", "320x"])

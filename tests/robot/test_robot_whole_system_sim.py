@@ -35,7 +35,7 @@ def start_sim(tmp_path: Path, domain: int) -> subprocess.Popen[str]:
         "duration_s": 120.0,
     }
     (tmp_path / "sim.yaml").write_text(yaml.safe_dump(node))
-    command = [sys.executable, "-m", "amiro.ros2", "node", "sim"]
+    command = [sys.executable, "-m", "amiro.cli", "node", "sim"]
     command += ["--config", str(tmp_path / "sim.yaml"), "--report", str(tmp_path / "sim.json")]
     env = {**os.environ, **ros_environment(domain)}
     return subprocess.Popen(

@@ -8,10 +8,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from amiro.navigation.localization import LOCALIZATION_TOPIC
-from amiro.navigation.move_to import MOVE_TO_ACTION
-from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE
-from amiro.ros2.launch import Launcher, load_deployment
+from amiro.core import names
+from amiro.deploy.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE
+from amiro.deploy.launch import Launcher, load_deployment
 
 
 def _write(path: Path, data: dict[str, object]) -> Path:
@@ -24,19 +23,19 @@ def _deployment(tmp_path: Path) -> Path:
         "role": "sim",
         "speed": 3.0,  # as the shipped deployment: a busy edge keeps pace
         "wait_for": ["amiro_edge", "amiro_cloud"],
-        "serve_actions": [MOVE_TO_ACTION],
-        "publish": [*DEFAULT_PUBLISH["sim"], LOCALIZATION_TOPIC],  # the pose the edge reads
+        "serve_actions": [names.MOVE_TO],
+        "publish": [*DEFAULT_PUBLISH["sim"], names.LOCALIZATION],  # the pose the edge reads
         "subscribe": ["/amiro/head/cmd", "/amiro/say"],  # /cmd_vel comes from local MoveTo
     }
     edge = {
         "role": "edge",
         "heartbeat_s": 0.5,
-        "call_actions": [MOVE_TO_ACTION],
+        "call_actions": [names.MOVE_TO],
         "publish": [t for t in DEFAULT_PUBLISH["edge"] if t != "/cmd_vel"],
         "subscribe": [
             *(t for t in DEFAULT_SUBSCRIBE["edge"] if t != "/scan"),
             "/odom",
-            LOCALIZATION_TOPIC,
+            names.LOCALIZATION,
         ],
     }
     cloud = {"role": "cloud", "watch": {"edge": 2.0, "sim": 2.0}, "stop_after_acks": 1}
@@ -66,8 +65,8 @@ def test_hydration_completes_with_move_to_across_processes(tmp_path: Path, domai
     sim = launcher.report("sim")
     edge = launcher.report("edge")
     cloud = launcher.report("cloud")
-    served = sim["actions"][f"ros2_serve:{MOVE_TO_ACTION}"]
-    called = edge["actions"][f"ros2_call:{MOVE_TO_ACTION}"]
+    served = sim["actions"][f"ros2_serve:{names.MOVE_TO}"]
+    called = edge["actions"][f"ros2_call:{names.MOVE_TO}"]
     assert called["sent"] >= 1 and served["received"] >= 1 and served["sent"] > 0
     assert served["errors"] == 0 and called["errors"] == 0
     assert edge["runs"] and edge["runs"][-1]["outcome"] == "completed"

@@ -8,12 +8,13 @@ from pathlib import Path
 
 import pytest
 
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import SpeechHeard
 from amiro.core.runtime import Runtime
+from amiro.deploy.dialogue import RemoteUnderstanding, UnderstandingService
+from amiro.deploy.launch import Launcher, load_deployment
 from amiro.dialogue.oracle import OracleUnderstanding
-from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding, UnderstandingService
-from amiro.ros2.launch import Launcher, load_deployment
 
 DEPLOYMENT = Path(
     str(resources.files("amiro").joinpath("data/deployments/hydration-dialogue-cloud.yaml"))
@@ -33,7 +34,7 @@ def test_remote_understanding_without_a_server_reads_as_not_understood() -> None
     runtime = Runtime(SimClock())
     runtime.start()
     heard = SpeechHeard(text="yes", lang="en", speaker="maria", intent="affirm", confidence=0.9)
-    assert not runtime.bus.has_service(UNDERSTAND_SERVICE)
+    assert not runtime.bus.has_service(names.UNDERSTAND)
     assert RemoteUnderstanding(runtime.bus).intent(heard) == ("out_of_scope", 0.0)
 
 
@@ -46,8 +47,8 @@ def test_listen_understands_in_the_cloud_and_hydration_completes(
     assert outcome == "cloud finished"
     edge = launcher.report("edge")
     cloud = launcher.report("cloud")
-    served = cloud["services"][f"ros2_serve:{UNDERSTAND_SERVICE}"]
-    called = edge["services"][f"ros2_call:{UNDERSTAND_SERVICE}"]
+    served = cloud["services"][f"ros2_serve:{names.UNDERSTAND}"]
+    called = edge["services"][f"ros2_call:{names.UNDERSTAND}"]
     assert served["received"] >= 1 and served["sent"] == served["received"]
     assert called["sent"] == called["received"] >= 1
     assert served["errors"] == 0 and called["errors"] == 0

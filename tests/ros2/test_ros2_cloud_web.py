@@ -16,8 +16,8 @@ import httpx
 import pytest
 import yaml
 
+from amiro.deploy.launch import Launcher, load_deployment
 from amiro.home.world import World, default_home_path
-from amiro.ros2.launch import Launcher, load_deployment
 
 DEPLOYMENTS = Path(str(resources.files("amiro").joinpath("data/deployments")))
 PASSWORD = "web in the cloud"

@@ -17,25 +17,18 @@ from amiro.behavior.engine import BehaviorEngine
 from amiro.behavior.graph import TaskGraph
 from amiro.behavior.handlers import HandlerRegistry
 from amiro.behavior.task import make_task
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.config import ConfigError, load
 from amiro.core.messages import Pose2D, SpeechHeard, SpeechRequest
 from amiro.core.runtime import Runtime
+from amiro.deploy.behaviors import BehaviorActionServer, BehaviorGoal, BehaviorRequests
+from amiro.deploy.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
+from amiro.deploy.dialogue import DialogueBehaviors
+from amiro.deploy.process import system_config
+from amiro.deploy.roles import build_cloud_role
 from amiro.dialogue.config import DialogueConfig
-from amiro.dialogue.node import HEARD_TOPIC
-from amiro.dialogue.output import SAY_TOPIC
 from amiro.dialogue.stack import build_dialogue
-from amiro.navigation.localization import LOCALIZATION_TOPIC
-from amiro.ros2.behaviors import (
-    BEHAVIOR_ACTION,
-    BehaviorActionServer,
-    BehaviorGoal,
-    BehaviorRequests,
-)
-from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
-from amiro.ros2.dialogue import DialogueBehaviors
-from amiro.ros2.process import system_config
-from amiro.ros2.roles import build_cloud_role
 from amiro.serve import RuntimeLoop
 from amiro.web.config import WebConfig
 
@@ -57,7 +50,7 @@ def _edge(runtime: Runtime) -> BehaviorActionServer:
 
 def _said(runtime: Runtime) -> list[SpeechRequest]:
     said: list[SpeechRequest] = []
-    runtime.bus.subscribe(SAY_TOPIC, SpeechRequest, said.append, depth=100)
+    runtime.bus.subscribe(names.SAY, SpeechRequest, said.append, depth=100)
     return said
 
 
@@ -93,7 +86,7 @@ def test_a_one_task_goal_and_a_cancelled_one() -> None:
     req = client.request(BehaviorGoal("Wait", {"seconds": 30.0}, 7, single_task=True))
     runtime.spin_for(0.5)
     assert req.run == "web_wait#1" and req.outcome is None
-    handle = runtime.bus.send_goal(BEHAVIOR_ACTION, BehaviorGoal("go_to", {"seconds": 30.0}))
+    handle = runtime.bus.send_goal(names.BEHAVIOR_RUN, BehaviorGoal("go_to", {"seconds": 30.0}))
     runtime.spin_for(0.5)
     handle.cancel()
     runtime.spin_for(0.5)
@@ -106,7 +99,7 @@ def test_a_spoken_command_becomes_a_goal_and_the_robot_says_how_it_ended() -> No
     _edge(runtime)
     requests = runtime.add(BehaviorRequests())
     said = _said(runtime)
-    behaviors = DialogueBehaviors(requests, runtime.bus.publisher(SAY_TOPIC, SpeechRequest))
+    behaviors = DialogueBehaviors(requests, runtime.bus.publisher(names.SAY, SpeechRequest))
     dialogue = build_dialogue(runtime, DialogueConfig(), submit=behaviors)
     runtime.start()
     answer = dialogue.manager.handle("go to the kitchen", "en", "maria")
@@ -122,7 +115,7 @@ def test_without_an_edge_the_dialogue_says_it_cannot_go() -> None:
     runtime = Runtime(SimClock())
     requests = runtime.add(BehaviorRequests())
     said = _said(runtime)
-    behaviors = DialogueBehaviors(requests, runtime.bus.publisher(SAY_TOPIC, SpeechRequest))
+    behaviors = DialogueBehaviors(requests, runtime.bus.publisher(names.SAY, SpeechRequest))
     runtime.start()
     assert behaviors("go_to", {"room_entity": "bedroom", "lang": "fr"}) is None
     runtime.spin_for(0.1)
@@ -147,7 +140,7 @@ class Cloud:
 def cloud() -> Iterator[Cloud]:
     runtime = Runtime(SimClock(speed=20.0))
     web = WebConfig(port=0, admin_password=SecretStr(PASSWORD))
-    node = NodeConfig(role="cloud", web=web, call_actions=(BEHAVIOR_ACTION,))
+    node = NodeConfig(role="cloud", web=web, call_actions=(names.BEHAVIOR_RUN,))
     parts = build_cloud_role(runtime, "cloud", node, system_config(node, 1))
     _edge(runtime)  # the edge's behaviour server, on the same bus here
     runtime.start()
@@ -172,7 +165,7 @@ def test_the_cloud_dashboard_shows_the_bridged_pose_and_runs_commands(cloud: Clo
         _login(client)
         assert client.get("/api/state").json()["robot"] is None  # no estimate yet
         pose = Pose2D(1.5, 2.0, 0.5)
-        cloud.runtime.bus.publish(LOCALIZATION_TOPIC, pose)  # as the bridge would
+        cloud.runtime.bus.publish(names.LOCALIZATION, pose)  # as the bridge would
         assert _poll(client, lambda s: s["robot"] == {"x": 1.5, "y": 2.0, "theta": 0.5})
         home = client.get("/api/map").json()
         assert "kitchen" in home["rooms"] and home["walls"]
@@ -205,7 +198,7 @@ def _poll(client: httpx.Client, pred: Any, timeout_s: float = 10.0) -> bool:
 
 def test_a_command_heard_by_the_robot_reaches_the_behaviour_layer(cloud: Cloud) -> None:
     heard = SpeechHeard(text="go to the bedroom", lang="en", speaker="maria")
-    cloud.runtime.bus.publish(HEARD_TOPIC, heard)  # as the bridge would, from the robot
+    cloud.runtime.bus.publish(names.HEARD, heard)  # as the bridge would, from the robot
     requests = _until_value(lambda: cloud.report().get("behavior_requests"))
     assert [(r["kind"], r["run"]) for r in requests] == [("go_to", "go_to#1")]
     outcomes = _until_value(lambda: cloud.report().get("dialogue_outcomes"))
@@ -226,9 +219,9 @@ def test_the_web_deployment_adds_its_topics_to_the_role_defaults() -> None:
     deployments = resources.files("amiro").joinpath("data/deployments")
     edge = load(NodeConfig, str(deployments.joinpath("hydration-web-edge.yaml")))
     cloud = load(NodeConfig, str(deployments.joinpath("hydration-web-cloud.yaml")))
-    assert edge.topics_out() == (*DEFAULT_PUBLISH["edge"], LOCALIZATION_TOPIC)
+    assert edge.topics_out() == (*DEFAULT_PUBLISH["edge"], names.LOCALIZATION)
     assert edge.topics_in() == DEFAULT_SUBSCRIBE["edge"]
     assert cloud.topics_in()[: len(DEFAULT_SUBSCRIBE["cloud"])] == DEFAULT_SUBSCRIBE["cloud"]
-    assert {SAY_TOPIC, HEARD_TOPIC, LOCALIZATION_TOPIC} <= set(cloud.topics_in())
-    assert cloud.web is not None and BEHAVIOR_ACTION in cloud.call_actions
-    assert BEHAVIOR_ACTION in edge.serve_actions
+    assert {names.SAY, names.HEARD, names.LOCALIZATION} <= set(cloud.topics_in())
+    assert cloud.web is not None and names.BEHAVIOR_RUN in cloud.call_actions
+    assert names.BEHAVIOR_RUN in edge.serve_actions

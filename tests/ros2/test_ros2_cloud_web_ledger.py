@@ -4,31 +4,29 @@ runs, and a notification raised before the edge's first heartbeat would otherwis
 
 from __future__ import annotations
 
-from amiro.behavior.engine import EVENTS_TOPIC
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
 from amiro.core.runtime import Runtime
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
-from amiro.ros2.health import NotificationLedger
+from amiro.deploy.health import NotificationLedger
 
 
 def test_notifications_raised_before_the_edge_is_up_are_sent_again() -> None:
     runtime = Runtime(SimClock())
     ledger = runtime.add(NotificationLedger(resend_delay_s=0.5))
     sent: list[Notification] = []
-    runtime.bus.subscribe(NOTIFICATIONS_TOPIC, Notification, sent.append, depth=10)
+    runtime.bus.subscribe(names.NOTIFICATIONS, Notification, sent.append, depth=10)
     runtime.start()
     note = Notification("hot-1", "maria", "hydration", 5)
-    runtime.bus.publish(NOTIFICATIONS_TOPIC, note)
+    runtime.bus.publish(names.NOTIFICATIONS, note)
     runtime.spin_for(0.1)
-    runtime.bus.publish(EVENTS_TOPIC, BehaviorEvent(0.2, "node_up", detail={"node": "sim"}))
+    runtime.bus.publish(names.EVENTS, BehaviorEvent(0.2, "node_up", detail={"node": "sim"}))
     runtime.spin_for(1.0)
     assert [n.id for n in sent] == ["hot-1"]  # another process coming up changes nothing
-    runtime.bus.publish(EVENTS_TOPIC, BehaviorEvent(1.2, "node_up", detail={"node": "edge"}))
+    runtime.bus.publish(names.EVENTS, BehaviorEvent(1.2, "node_up", detail={"node": "edge"}))
     runtime.spin_for(1.0)
     assert [n.id for n in sent] == ["hot-1", "hot-1"] and ledger.resent == 1
-    runtime.bus.publish(ACK_TOPIC, Acknowledgement("hot-1", "done", "t"))
-    runtime.bus.publish(EVENTS_TOPIC, BehaviorEvent(2.5, "node_up", detail={"node": "edge"}))
+    runtime.bus.publish(names.ACK, Acknowledgement("hot-1", "done", "t"))
+    runtime.bus.publish(names.EVENTS, BehaviorEvent(2.5, "node_up", detail={"node": "edge"}))
     runtime.spin_for(1.0)
     assert len(sent) == 2 and ledger.pending == {}

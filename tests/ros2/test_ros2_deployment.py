@@ -10,7 +10,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from amiro.ros2.launch import Launcher, load_deployment
+from amiro.deploy.launch import Launcher, load_deployment
 
 DEPLOYMENT = Path(str(resources.files("amiro").joinpath("data/deployments/hydration.yaml")))
 

@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from amiro.ros2.launch import Launcher, load_deployment
+from amiro.deploy.launch import Launcher, load_deployment
 
 DEPLOYMENT = Path(str(resources.files("amiro").joinpath("data/deployments/hydration.yaml")))
 

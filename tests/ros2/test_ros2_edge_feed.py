@@ -10,19 +10,13 @@ import pytest
 
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.recognizer import SkeletonActivityRecognizer
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import Header, Odometry, Pose2D, Skeleton, Twist
 from amiro.core.runtime import Runtime
+from amiro.deploy.boundary import CameraObservations, HeadSensorsFeed, HeadSensorsPublisher
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.stack import SimPeopleFinder
-from amiro.robot.ports import ODOM
-from amiro.ros2.boundary import (
-    OBSERVATIONS_TOPIC,
-    SKELETONS_TOPIC,
-    CameraObservations,
-    HeadSensorsFeed,
-    HeadSensorsPublisher,
-)
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.skeletons import SkeletonCamera
@@ -120,7 +114,7 @@ def test_a_body_the_household_does_not_explain_is_dropped() -> None:
     runtime.spin_for(0.5)
     before = dict(feed.bodies)
     stranger = Skeleton(Header(0.5, "camera_level"), 7, np.zeros((25, 3)), np.ones(25, bool))
-    runtime.bus.publisher(SKELETONS_TOPIC, Skeleton).publish(stranger)
+    runtime.bus.publisher(names.SKELETONS, Skeleton).publish(stranger)
     runtime.spin_for(0.1)
     assert set(feed.bodies) == set(before) == {"maria"}
 
@@ -129,11 +123,11 @@ def test_the_pose_of_a_late_frame_is_carried_back_by_odometry() -> None:
     runtime = Runtime(SimClock(), seed=0)
     estimate = Pose2D(5.0, 1.0, math.pi / 2)  # localisation now, in the map
     feed = HeadSensorsFeed(runtime.bus, (1.15, 0.08), ("maria",), lambda: estimate)
-    odom = runtime.bus.publisher(ODOM, Odometry)
+    odom = runtime.bus.publisher(names.ODOM, Odometry)
     for stamp, x in ((1.0, 0.0), (2.0, 0.5)):  # drove 0.5 m forward between the two
         pose = Pose2D(x, 0.0, 0.0).to_pose()
         odom.publish(Odometry(Header(stamp, "odom"), "base_footprint", pose, Twist()))
-    frame = runtime.bus.publisher(OBSERVATIONS_TOPIC, CameraObservations)
+    frame = runtime.bus.publisher(names.OBSERVATIONS, CameraObservations)
     frame.publish(CameraObservations(1.0, ()))  # taken at 1.0, heard now
     runtime.spin_for(0.05)
     then = feed.robot_pose()

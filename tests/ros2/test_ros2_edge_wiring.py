@@ -8,26 +8,26 @@ from typing import Any
 import numpy as np
 import pytest
 
-from amiro.activity.oracle import OracleActivityRecognizer
 from amiro.activity.recognizer import SkeletonActivityRecognizer
 from amiro.behavior.engine import BehaviorEngine
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import Header, Skeleton
 from amiro.core.runtime import Runtime
+from amiro.deploy.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
+from amiro.deploy.dialogue import RemoteUnderstanding
+from amiro.deploy.roles import build_edge_role
 from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.understanding import Nlu
-from amiro.perception.oracle import OraclePeopleFinder
 from amiro.perception.stack import SimPeopleFinder
-from amiro.ros2.boundary import OBSERVATIONS_TOPIC, SKELETONS_TOPIC
-from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
-from amiro.ros2.dialogue import UNDERSTAND_SERVICE, RemoteUnderstanding
-from amiro.ros2.roles import build_edge_role
 from amiro.ros2.routes import route
 from amiro.ros2.types import RosbagsTypes
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
+from amiro.sim.activity_oracle import OracleActivityRecognizer
+from amiro.sim.perception_oracle import OraclePeopleFinder
 from amiro.system import SystemConfig
 
-HEAD_TOPICS = {OBSERVATIONS_TOPIC, SKELETONS_TOPIC, "/camera/camera_info", "/joint_states"}
+HEAD_TOPICS = {names.OBSERVATIONS, names.SKELETONS, "/camera/camera_info", "/joint_states"}
 
 
 def _edge(cfg: SystemConfig) -> tuple[Runtime, dict[str, Any]]:
@@ -51,7 +51,7 @@ def test_the_edge_runs_the_real_modules_by_default() -> None:
 
 def test_listen_asks_the_cloud_when_it_serves_understanding() -> None:
     runtime = Runtime(SimClock(), seed=1)
-    node = NodeConfig(role="edge", call_services=(UNDERSTAND_SERVICE,))
+    node = NodeConfig(role="edge", call_services=(names.UNDERSTAND,))
     build_edge_role(runtime, "edge", node, scenario_config(HydrationOptions(seed=1)))
     engine = runtime.node("behavior")
     assert isinstance(engine, BehaviorEngine)
@@ -77,7 +77,7 @@ def test_the_robot_publishes_and_the_edge_hears_what_the_modules_read() -> None:
 
 def test_a_skeleton_crosses_as_json_with_its_untracked_joints() -> None:
     types = RosbagsTypes()
-    codec = route(SKELETONS_TOPIC).codec
+    codec = route(names.SKELETONS).codec
     joints = np.random.default_rng(0).normal(size=(25, 3))
     tracked = np.ones(25, dtype=bool)
     tracked[[3, 7]] = False
@@ -97,4 +97,4 @@ def test_a_skeleton_crosses_as_json_with_its_untracked_joints() -> None:
 def test_a_malformed_skeleton_is_rejected_with_value_error(data: str) -> None:
     types = RosbagsTypes()
     with pytest.raises(ValueError):
-        route(SKELETONS_TOPIC).codec.decode(types.make("std_msgs/msg/String", data=data))
+        route(names.SKELETONS).codec.decode(types.make("std_msgs/msg/String", data=data))

@@ -15,8 +15,8 @@ from typing import Any
 import pytest
 import yaml
 
-from amiro.ros2.launch import Launcher, load_deployment
-from amiro.ros2.ledger_store import LedgerStore
+from amiro.deploy.launch import Launcher, load_deployment
+from amiro.deploy.ledger_store import LedgerStore
 
 DEPLOYMENTS = Path(str(resources.files("amiro").joinpath("data/deployments")))
 

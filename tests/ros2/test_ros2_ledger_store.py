@@ -5,15 +5,13 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from amiro.behavior.engine import EVENTS_TOPIC
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
 from amiro.core.runtime import Runtime
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
-from amiro.ros2.config import NodeConfig
-from amiro.ros2.health import NotificationLedger
-from amiro.ros2.ledger_store import LedgerFile, LedgerStore
+from amiro.deploy.config import NodeConfig
+from amiro.deploy.health import NotificationLedger
+from amiro.deploy.ledger_store import LedgerFile, LedgerStore
 
 NOTE = Notification("hot-1", "maria", "hydration", 5, "28 C in the living room")
 CHECKPOINT = {"run": "r1", "graph": "hydration", "task": "offer_water", "finished": []}
@@ -23,7 +21,7 @@ def _cloud(path: Path) -> tuple[Runtime, NotificationLedger, list[Notification]]
     runtime = Runtime(SimClock())
     ledger = runtime.add(NotificationLedger(resend_delay_s=0.5, store=LedgerStore(path)))
     sent: list[Notification] = []
-    runtime.bus.subscribe(NOTIFICATIONS_TOPIC, Notification, sent.append, depth=10)
+    runtime.bus.subscribe(names.NOTIFICATIONS, Notification, sent.append, depth=10)
     runtime.start()
     return runtime, ledger, sent
 
@@ -38,15 +36,15 @@ def test_a_restarted_cloud_resends_the_pending_notification_with_its_checkpoint(
 ) -> None:
     path = tmp_path / "ledger.json"
     runtime, _, _ = _cloud(path)
-    runtime.bus.publish(NOTIFICATIONS_TOPIC, NOTE)
+    runtime.bus.publish(names.NOTIFICATIONS, NOTE)
     runtime.spin_for(0.1)
-    runtime.bus.publish(EVENTS_TOPIC, _checkpoint_event("hot-1"))
+    runtime.bus.publish(names.EVENTS, _checkpoint_event("hot-1"))
     runtime.spin_for(0.1)
     runtime.stop()  # the file is all that is left of the first cloud
 
     runtime, ledger, sent = _cloud(path)
     assert ledger.restored == 1 and ledger.checkpoints == {"hot-1": CHECKPOINT}
-    runtime.bus.publish(EVENTS_TOPIC, BehaviorEvent(1.0, "node_up", detail={"node": "edge"}))
+    runtime.bus.publish(names.EVENTS, BehaviorEvent(1.0, "node_up", detail={"node": "edge"}))
     runtime.spin_for(1.0)
     assert [n.id for n in sent] == ["hot-1"]
     assert sent[0].checkpoint == CHECKPOINT and sent[0].reason == NOTE.reason
@@ -58,11 +56,11 @@ def test_an_acknowledgement_removes_the_entry_from_the_file(tmp_path: Path) -> N
     runtime, ledger, _ = _cloud(path)
     other = Notification("hot-2", "ahmed", "hydration", 5)
     for note in (NOTE, other):
-        runtime.bus.publish(NOTIFICATIONS_TOPIC, note)
-    runtime.bus.publish(EVENTS_TOPIC, _checkpoint_event("hot-1"))
+        runtime.bus.publish(names.NOTIFICATIONS, note)
+    runtime.bus.publish(names.EVENTS, _checkpoint_event("hot-1"))
     runtime.spin_for(0.1)
     assert set(json.loads(path.read_text())["pending"]) == {"hot-1", "hot-2"}
-    runtime.bus.publish(ACK_TOPIC, Acknowledgement("hot-1", "done", "t"))
+    runtime.bus.publish(names.ACK, Acknowledgement("hot-1", "done", "t"))
     runtime.spin_for(0.1)
     saved = LedgerStore(path).load()
     assert list(saved.pending) == ["hot-2"] and saved.checkpoints == {}
@@ -78,7 +76,7 @@ def test_a_corrupt_file_is_moved_aside_and_the_ledger_starts_empty(tmp_path: Pat
     report = ledger.persistence()["ledger"]
     assert report["corrupt"] == 1
     assert (tmp_path / "ledger.json.corrupt").read_text().startswith('{"version": 1')
-    runtime.bus.publish(NOTIFICATIONS_TOPIC, NOTE)  # and it keeps working
+    runtime.bus.publish(names.NOTIFICATIONS, NOTE)  # and it keeps working
     runtime.spin_for(0.1)
     assert list(LedgerStore(path).load().pending) == ["hot-1"]
 

@@ -5,19 +5,19 @@ does.  Edge and cloud share one bus here; the ROS 2 leg is the route's codec."""
 from __future__ import annotations
 
 from amiro.behavior.engine import BehaviorEngine
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import Header, People, Person, Point
 from amiro.core.runtime import Runtime
+from amiro.deploy.behaviors import BehaviorRequests
+from amiro.deploy.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
+from amiro.deploy.people import TrackedPeoplePublisher, dashboard_people
+from amiro.deploy.roles import build_edge_role
+from amiro.deploy.web_robot import RemoteRobot
 from amiro.home.world import World, default_home_path
-from amiro.navigation.localization import LOCALIZATION_TOPIC
 from amiro.perception.tracking import Measurement, PeopleTracker
-from amiro.ros2.behaviors import BehaviorRequests
-from amiro.ros2.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE, NodeConfig
-from amiro.ros2.people import PEOPLE_TOPIC, TrackedPeoplePublisher, dashboard_people
-from amiro.ros2.roles import build_edge_role
 from amiro.ros2.routes import route
 from amiro.ros2.types import RosbagsTypes
-from amiro.ros2.web_robot import RemoteRobot
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import SystemConfig
 
@@ -27,7 +27,7 @@ def _edge_and_cloud() -> tuple[Runtime, PeopleTracker, RemoteRobot]:
     tracker = PeopleTracker()
     runtime.add(TrackedPeoplePublisher(tracker, period_s=0.5))
     home = World.load(default_home_path()).home
-    robot = runtime.add(RemoteRobot(home, [], LOCALIZATION_TOPIC, runtime.add(BehaviorRequests())))
+    robot = runtime.add(RemoteRobot(home, [], names.LOCALIZATION, runtime.add(BehaviorRequests())))
     runtime.start()
     return runtime, tracker, robot
 
@@ -53,7 +53,7 @@ def test_the_dashboard_shows_the_confirmed_tracks_until_they_are_forgotten() -> 
 
 def test_people_cross_ros2_as_json_with_names_and_positions() -> None:
     types = RosbagsTypes()
-    codec = route(PEOPLE_TOPIC).codec
+    codec = route(names.PEOPLE).codec
     sent = People(
         Header(3.5, "map"),
         (Person("person_1", "maria", Point(1.0, 2.0, 1.6), 0.9),
@@ -66,7 +66,7 @@ def test_people_cross_ros2_as_json_with_names_and_positions() -> None:
 
 
 def test_the_edge_publishes_its_perception_tracks_and_the_cloud_hears_them() -> None:
-    assert PEOPLE_TOPIC in DEFAULT_PUBLISH["edge"] and PEOPLE_TOPIC in DEFAULT_SUBSCRIBE["cloud"]
+    assert names.PEOPLE in DEFAULT_PUBLISH["edge"] and names.PEOPLE in DEFAULT_SUBSCRIBE["cloud"]
     runtime = Runtime(SimClock(), seed=1)
     build_edge_role(runtime, "edge", NodeConfig(role="edge"), scenario_config(HydrationOptions()))
     publisher, engine = runtime.node("tracked_people"), runtime.node("behavior")

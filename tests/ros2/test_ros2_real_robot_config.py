@@ -7,16 +7,16 @@ from pathlib import Path
 
 import pytest
 
+from amiro.core import names
 from amiro.core.config import ConfigError, load
-from amiro.robot import ports
+from amiro.deploy.config import NodeConfig, RosSection
+from amiro.deploy.launch import load_deployment
+from amiro.deploy.robot_edge import robot_on_process_domain
 from amiro.robot.config import RobotConfig
-from amiro.ros2.config import NodeConfig, RosSection
-from amiro.ros2.launch import load_deployment
-from amiro.ros2.robot_edge import robot_on_process_domain
 from amiro.system import SystemConfig
 
 SHIPPED = Path(str(resources.files("amiro").joinpath("data/deployments/robot-ros2.yaml")))
-DRIVER_TOPICS = {ports.SCAN, ports.ODOM, ports.CMD_VEL, ports.IMAGE, ports.HEAD_CMD, ports.TF}
+DRIVER_TOPICS = {names.SCAN, names.ODOM, names.CMD_VEL, names.IMAGE, names.HEAD_CMD, names.TF}
 
 
 def test_the_shipped_deployment_runs_edge_and_cloud_on_wall_time() -> None:
@@ -39,7 +39,7 @@ def test_a_robot_edge_leaves_the_drivers_topics_to_its_adapter() -> None:
         edge.topics_out(robot=True)
     )
     assert "/amiro/notifications" in edge.topics_in(robot=True)
-    assert ports.CMD_VEL in edge.topics_out()  # on the simulator's topics, the bridge drives
+    assert names.CMD_VEL in edge.topics_out()  # on the simulator's topics, the bridge drives
 
 
 def test_the_robot_adapters_join_the_process_domain() -> None:

@@ -16,18 +16,19 @@ import numpy as np
 import pytest
 import yaml
 
+from amiro.core import names
 from amiro.core.clock import WallClock
 from amiro.core.config import ConfigError, parse
 from amiro.core.runtime import Runtime
+from amiro.deploy.behaviors import BehaviorGoal
+from amiro.deploy.config import NodeConfig
+from amiro.deploy.interfaces import known_action
+from amiro.deploy.launch import Launcher, load_deployment
 from amiro.perception.onnx_standins import fixed_answer_model
 from amiro.ros2.actions import RemoteActionServer
-from amiro.ros2.behaviors import BEHAVIOR_ACTION, BehaviorGoal
 from amiro.ros2.bridge import Ros2Bridge
-from amiro.ros2.config import NodeConfig
 from amiro.ros2.context import RosContext
 from amiro.ros2.env import ros_environment
-from amiro.ros2.interfaces import known_action
-from amiro.ros2.launch import Launcher, load_deployment
 from sim_driver import stop_sim
 
 HALLWAY = (2.0, 4.2)  # the named place the robot is sent to (the shipped apartment's)
@@ -52,7 +53,7 @@ def _robot_system(tmp_path: Path) -> Path:
 def _deployment(tmp_path: Path) -> Path:
     system = str(_robot_system(tmp_path))
     common = {"clock": "wall", "scenario": None, "system": system}
-    edge = {"role": "edge", **common, "serve_actions": [BEHAVIOR_ACTION], "heartbeat_s": 0.5}
+    edge = {"role": "edge", **common, "serve_actions": [names.BEHAVIOR_RUN], "heartbeat_s": 0.5}
     cloud = {"role": "cloud", **common, "watch": {"edge": 3.0}}
     processes = [
         {"name": name, "config": str(_write(tmp_path / f"{name}.yaml", cfg)), "restart": "never"}
@@ -62,7 +63,7 @@ def _deployment(tmp_path: Path) -> Path:
 
 
 def _start_driver(tmp_path: Path, domain: int) -> subprocess.Popen[str]:
-    command = [sys.executable, "-m", "amiro.ros2", "sim", "--ros2", "--speed", "1"]
+    command = [sys.executable, "-m", "amiro.cli", "sim", "--ros2", "--speed", "1"]
     command += ["--camera-rate", "2", "--report", str(tmp_path / "sim.json")]
     env = {**os.environ, **ros_environment(domain)}
     return subprocess.Popen(
@@ -77,7 +78,7 @@ def _ask_go_to(domain: int, place: str) -> Any:
     runtime.add(Ros2Bridge(ros))  # an empty bridge only pumps ROS 2
     scans: list[object] = []
     ros.subscribe("sensor_msgs/msg/LaserScan", "/scan", scans.append, depth=1)
-    remote = runtime.add(RemoteActionServer(ros, known_action(BEHAVIOR_ACTION), timeout_s=10.0))
+    remote = runtime.add(RemoteActionServer(ros, known_action(names.BEHAVIOR_RUN), timeout_s=10.0))
     try:
         runtime.start()
         assert runtime.spin_until(lambda: remote.server_heard is not None, 60.0)
@@ -86,7 +87,7 @@ def _ask_go_to(domain: int, place: str) -> Any:
         scans.clear()
         assert runtime.spin_until(lambda: len(scans) >= 40, 30.0)
         handle = runtime.bus.send_goal(
-            BEHAVIOR_ACTION, BehaviorGoal("go_to", {"room_entity": place})
+            names.BEHAVIOR_RUN, BehaviorGoal("go_to", {"room_entity": place})
         )
         assert runtime.spin_until(lambda: handle.done, 60.0)
         return handle.result

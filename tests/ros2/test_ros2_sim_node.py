@@ -17,7 +17,7 @@ SCRIPT = Path(__file__).parent / "scripts" / "drive_sim.py"
 def test_plain_rclpy_script_reads_scan_and_odom_and_drives(domain_id: int) -> None:
     env = {**os.environ, **ros_environment(domain_id)}
     sim = subprocess.Popen(
-        [sys.executable, "-m", "amiro.ros2", "sim", "--ros2", "--json", "--duration", "60"],
+        [sys.executable, "-m", "amiro.cli", "sim", "--ros2", "--json", "--duration", "60"],
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

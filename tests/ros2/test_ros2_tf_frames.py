@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from amiro.core import names
 from amiro.core.clock import SimClock
 from amiro.core.messages import (
     Header,
@@ -19,12 +20,8 @@ from amiro.core.messages import (
     Twist,
 )
 from amiro.core.runtime import Runtime
-from amiro.navigation.poses import compose
-from amiro.robot.camera import Camera, CameraParams
-from amiro.robot.ports import HEAD_PITCH, HEAD_YAW
-from amiro.ros2.tf import (
+from amiro.deploy.tf import (
     OPTICAL,
-    TF_STATIC,
     MapOdomNode,
     RobotFramesNode,
     head_camera,
@@ -32,6 +29,8 @@ from amiro.ros2.tf import (
     robot_frames,
     transform,
 )
+from amiro.navigation.poses import compose
+from amiro.robot.camera import Camera, CameraParams
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import build_sim
 
@@ -74,7 +73,7 @@ def test_robot_frames_publish_static_mounts_and_the_moving_head() -> None:
     node = rt.add(robot_frames(sim))
     statics: list[TransformStamped] = []
     dynamic: list[TransformStamped] = []
-    rt.bus.subscribe(TF_STATIC, TransformStamped, statics.append, depth=100)
+    rt.bus.subscribe(names.TF_STATIC, TransformStamped, statics.append, depth=100)
     rt.bus.subscribe("/tf", TransformStamped, dynamic.append, depth=1000)
     rt.start()
     sim.robot.head.command(0.5, 0.2)  # the head turns: its camera frame follows on /tf
@@ -101,7 +100,9 @@ def test_joint_states_without_head_joints_publish_nothing() -> None:
     rt.bus.subscribe("/tf", TransformStamped, dynamic.append)
     rt.start()
     rt.bus.publish("/joint_states", JointState(Header(1.0, ""), ("Wheel",), (0.3,)))
-    rt.bus.publish("/joint_states", JointState(Header(1.0, ""), (HEAD_YAW, HEAD_PITCH), (0.1, 0)))
+    rt.bus.publish(
+        "/joint_states", JointState(Header(1.0, ""), (names.HEAD_YAW, names.HEAD_PITCH), (0.1, 0))
+    )
     rt.spin_for(0.1)
     assert [t.child_frame_id for t in dynamic] == ["camera_link"]
 

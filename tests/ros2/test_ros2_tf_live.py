@@ -50,7 +50,7 @@ def test_tf_codecs_round_trip_through_rclpy_messages() -> None:
 
 def _start(args: list[str], env: dict[str, str]) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-m", "amiro.ros2", *args, "--json"],
+        [sys.executable, "-m", "amiro.cli", *args, "--json"],
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,

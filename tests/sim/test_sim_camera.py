@@ -85,7 +85,9 @@ def test_low_furniture_does_not_hide_but_wardrobe_does(world: World) -> None:
     cam = Camera()
     robot = Pose2D(7.0, 2.6, -math.pi / 2)  # the couch place, facing the couch
     sitting = Resident("d", 7.0, 0.6, heading=math.pi / 2, posture="sitting_couch")
-    (obs,) = observe_residents(cam, world, robot, 0.0, 0.0, [sitting], rng())  # over the coffee table
+    (obs,) = observe_residents(
+        cam, world, robot, 0.0, 0.0, [sitting], rng()
+    )  # over the coffee table
     assert obs.face_visible
     assert obs.backlit  # the living-room window is right behind the couch
     fresh = World.load(default_home_path())

@@ -26,8 +26,8 @@ from amiro.activity.skeleton import NUM_JOINTS, FloatArray
 from amiro.core.clock import wall_seconds
 from amiro.core.messages import BoundingBox2D, Point
 from amiro.core.node import Node
-from amiro.perception.camera_feed import CameraFeed, RgbdFrame
-from amiro.perception.sim_detector import iou
+from amiro.core.vision import iou
+from amiro.robot.camera_feed import CameraFeed, RgbdFrame
 
 HISTORY_S = 4.0  # skeletons kept per body
 MATCH_IOU = 0.3  # a pose box overlapping a body's last box this much continues it

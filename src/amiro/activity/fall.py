@@ -12,8 +12,9 @@ import logging
 from collections.abc import Callable, Iterable
 
 from amiro.activity.ports import ActivityRecognizer
-from amiro.behavior.engine import EVENTS_TOPIC, GraphRun
+from amiro.behavior.engine import GraphRun
 from amiro.behavior.handlers import HandlerRegistry
+from amiro.core import names
 from amiro.core.messages import BehaviorEvent
 from amiro.core.node import Node
 
@@ -44,7 +45,7 @@ class FallMonitorNode(Node):
         self.alerts: list[str] = []  # people a fall was raised for, in order
 
     def on_start(self) -> None:
-        self.pub_events = self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
+        self.pub_events = self.create_publisher(names.EVENTS, BehaviorEvent)
         self.create_timer(self.period_s, self._check)
 
     def _check(self) -> None:

@@ -24,8 +24,7 @@ from amiro.activity.keypoints import FORMATS
 from amiro.activity.skeleton import FloatArray
 from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D
-from amiro.perception.hog import import_cv2
-from amiro.perception.onnx_yolo import input_size, letterbox, open_session
+from amiro.core.vision import import_cv2, input_size, letterbox, open_session
 
 
 @dataclass(frozen=True, eq=False)

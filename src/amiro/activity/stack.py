@@ -31,7 +31,7 @@ Factory: TypeAlias = (
 def oracle_recognizer(
     camera: HeadCamera, skeletons: SkeletonSource, rng: np.random.Generator, cfg: ActivityConfig
 ) -> ActivityRecognizer:
-    from amiro.activity.oracle import OracleActivityRecognizer
+    from amiro.sim.activity_oracle import OracleActivityRecognizer
 
     return OracleActivityRecognizer(camera, rng, cfg.accuracy)
 

@@ -1,7 +1,7 @@
 """Behaviour composition: task graphs, their YAML form, the engine and event handlers.
 
 The names below load their submodule on first use (PEP 562), so importing a subpackage such
-as ``amiro.behavior.planning.cli`` (``amiro --help``) does not load the engine.
+as ``amiro.commands.planning`` (``amiro --help``) does not load the engine.
 """
 
 from __future__ import annotations
@@ -12,13 +12,7 @@ from amiro.core.lazy import lazy_getattr
 
 if TYPE_CHECKING:
     from amiro.behavior.checkpoint import Checkpoint, CheckpointError, FinishedTask
-    from amiro.behavior.engine import (
-        EVENTS_TOPIC,
-        BehaviorEngine,
-        EngineConfig,
-        GraphRun,
-        RunStatus,
-    )
+    from amiro.behavior.engine import BehaviorEngine, EngineConfig, GraphRun, RunStatus
     from amiro.behavior.graph import COMPLETED, FAILED, Edge, End, TaskGraph, TaskNode
     from amiro.behavior.handlers import (
         HandlerError,
@@ -41,7 +35,6 @@ _SUBMODULES = ("engine", "graph", "handlers", "loader", "task", "checkpoint")
 
 __all__ = [
     "COMPLETED",
-    "EVENTS_TOPIC",
     "FAILED",
     "BehaviorEngine",
     "Checkpoint",

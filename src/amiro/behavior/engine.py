@@ -28,11 +28,10 @@ from amiro.behavior.checkpoint import (
 )
 from amiro.behavior.graph import End, TaskGraph, task_type_name
 from amiro.behavior.task import Task, TaskContext, TaskError, TaskRecord, TaskStatus
+from amiro.core import names
 from amiro.core.config import Section
 from amiro.core.messages import BehaviorEvent
 from amiro.core.node import Node
-
-EVENTS_TOPIC = "/amiro/events"
 
 # How many tasks may start in one tick; bounds a loop of tasks that fail as they start.
 _MAX_STARTS_PER_TICK = 64
@@ -140,7 +139,7 @@ class BehaviorEngine(Node):
 
     # --- lifecycle ------------------------------------------------------------------------
     def on_start(self) -> None:
-        self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
+        self.create_publisher(names.EVENTS, BehaviorEvent)
         self.create_timer(self.config.tick_s, self.tick)
 
     # --- public API -----------------------------------------------------------------------
@@ -464,4 +463,4 @@ class BehaviorEngine(Node):
     def _emit(self, event: BehaviorEvent) -> None:
         """Keep the event and publish it on /amiro/events (tasks emit through here too)."""
         self.events.append(event)
-        self.runtime.bus.publish(EVENTS_TOPIC, event)
+        self.runtime.bus.publish(names.EVENTS, event)

@@ -19,10 +19,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from amiro.behavior.checkpoint import Checkpoint, CheckpointError, carried
-from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, GraphRun
+from amiro.behavior.engine import BehaviorEngine, GraphRun
 from amiro.behavior.handlers import HandlerError, HandlerRegistry
 from amiro.behavior.task import TaskError
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.messages import (
     Acknowledgement,
     BehaviorEvent,
@@ -33,8 +33,6 @@ from amiro.core.messages import (
     PoseStamped,
 )
 from amiro.core.node import Node
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
-from amiro.navigation.localization import INITIAL_POSE_TOPIC
 
 
 @dataclass(frozen=True)
@@ -66,14 +64,14 @@ class NotificationHandlerNode(Node):
         self._odom: Pose2D | None = None
 
     def on_start(self) -> None:
-        self.ack_pub = self.create_publisher(ACK_TOPIC, Acknowledgement)
-        self.events = self.create_publisher(EVENTS_TOPIC, BehaviorEvent)
-        self.create_subscription(NOTIFICATIONS_TOPIC, Notification, self._on_notification, 1000)
+        self.ack_pub = self.create_publisher(names.ACK, Acknowledgement)
+        self.events = self.create_publisher(names.EVENTS, BehaviorEvent)
+        self.create_subscription(names.NOTIFICATIONS, Notification, self._on_notification, 1000)
         self.create_timer(0.5, self._check_runs)
         if self.checkpoints:
-            self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, 1000)
-            self.create_subscription("/odom", Odometry, self._on_odom, 1)
-            self.initial_pose = self.create_publisher(INITIAL_POSE_TOPIC, PoseStamped)
+            self.create_subscription(names.EVENTS, BehaviorEvent, self._on_event, 1000)
+            self.create_subscription(names.ODOM, Odometry, self._on_odom, 1)
+            self.initial_pose = self.create_publisher(names.INITIAL_POSE, PoseStamped)
 
     def _on_notification(self, note: Notification) -> None:
         running = self.runs.get(note.id)

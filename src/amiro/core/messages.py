@@ -255,6 +255,9 @@ class People:
     people: tuple[Person, ...]
 
 
+SKELETON_JOINTS = 25  # NTU RGB+D's body layout, the one every skeleton on the bus uses
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class Skeleton:
     """One body in NTU RGB+D layout: ``joints`` is (25, 3) in metres, camera frame;

@@ -24,6 +24,8 @@ DISPLAY = "/amiro/display"  # String: text, or a URL for a web view
 POSTURE = "/amiro/posture"  # String: a posture name ("Stand", "Crouch")
 EMERGENCY_STOP = "/amiro/emergency_stop"  # String: see core.safety.estop_engaged
 CLOCK = "/clock"  # rosgraph_msgs/Clock over ROS 2
+MAP = "/map"  # OccupancyGrid, latched
+GOAL_POSE = "/goal_pose"  # PoseStamped: a navigation goal from RViz
 
 HEAD_YAW, HEAD_PITCH = "HeadYaw", "HeadPitch"
 

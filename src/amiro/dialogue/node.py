@@ -6,15 +6,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from amiro.core import names
 from amiro.core.messages import SpeechHeard, SpeechRequest
 from amiro.core.node import Node
 from amiro.dialogue.audio import write_wav
 from amiro.dialogue.manager import DialogueManager
-from amiro.dialogue.output import SAY_TOPIC
 from amiro.dialogue.profiles import SpeakerProfile, language_of
 from amiro.dialogue.tts import Synthesizer
 
-HEARD_TOPIC = "/amiro/speech/heard"
 # Answers to the robot's own questions belong to the Listen task that asked them.
 LISTEN_INTENTS = ("affirm", "deny", "postpone", "out_of_scope")
 
@@ -26,8 +25,8 @@ class DialogueNode(Node):
         self.profiles = profiles
 
     def on_start(self) -> None:
-        self.say_pub = self.create_publisher(SAY_TOPIC, SpeechRequest)
-        self.create_subscription(HEARD_TOPIC, SpeechHeard, self._on_heard, 10)
+        self.say_pub = self.create_publisher(names.SAY, SpeechRequest)
+        self.create_subscription(names.HEARD, SpeechHeard, self._on_heard, 10)
 
     def _on_heard(self, heard: SpeechHeard) -> None:
         user = heard.speaker or ""
@@ -63,7 +62,7 @@ class TtsNode(Node):
         self.count = 0
 
     def on_start(self) -> None:
-        self.create_subscription(SAY_TOPIC, SpeechRequest, self._on_say, 10)
+        self.create_subscription(names.SAY, SpeechRequest, self._on_say, 10)
 
     def _on_say(self, msg: SpeechRequest) -> None:
         if not msg.say:

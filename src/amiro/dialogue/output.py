@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
+from amiro.core import names
 from amiro.core.bus import Bus
 from amiro.core.messages import SpeechRequest
-
-SAY_TOPIC = "/amiro/say"
 
 
 def speaking_time(text: str, words_per_second: float = 2.5) -> float:
@@ -17,7 +16,7 @@ class BusSpeechOutput:
     """Publishes ``SpeechRequest`` and estimates the speaking time (about 150 words/min)."""
 
     def __init__(self, bus: Bus, words_per_second: float = 2.5) -> None:
-        self.pub = bus.publisher(SAY_TOPIC, SpeechRequest)
+        self.pub = bus.publisher(names.SAY, SpeechRequest)
         self.words_per_second = words_per_second
 
     def say(self, text: str, lang: str, act: str = "", addressee: str = "") -> float:

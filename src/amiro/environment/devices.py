@@ -6,10 +6,10 @@ dashboard and Home Assistant see the effect of a command as they would in a real
 
 from __future__ import annotations
 
+from amiro.core import names
 from amiro.core.node import Node
 from amiro.environment.messages import DEVICE_STATES, DEVICES, DeviceCommand, DeviceState
 from amiro.environment.simulated import SimulatedSensorsNode
-from amiro.environment.topics import DEVICE_COMMAND_TOPIC, DEVICE_STATE_TOPIC
 
 LUX = {("lights", "on"): 250.0, ("blinds", "open"): 200.0}
 BASE_LUX = 50.0
@@ -26,8 +26,8 @@ class SimulatedDevicesNode(Node):
         self.rejected = 0
 
     def on_start(self) -> None:
-        self.pub = self.create_publisher(DEVICE_STATE_TOPIC, DeviceState)
-        self.create_subscription(DEVICE_COMMAND_TOPIC, DeviceCommand, self._on_command, 1000)
+        self.pub = self.create_publisher(names.DEVICE_STATE, DeviceState)
+        self.create_subscription(names.DEVICE_COMMAND, DeviceCommand, self._on_command, 1000)
         for room, device in self.states:
             self._report(room, device)
 

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+from amiro.core import names
 from amiro.core.node import Node
 from amiro.environment.health_store import HealthStore
 from amiro.environment.messages import HealthMeasurement
-from amiro.environment.topics import HEALTH_TOPIC
 
 
 class HealthRecorderNode(Node):
@@ -15,7 +15,7 @@ class HealthRecorderNode(Node):
         self.recorded = 0
 
     def on_start(self) -> None:
-        self.create_subscription(HEALTH_TOPIC, HealthMeasurement, self._record, depth=10_000)
+        self.create_subscription(names.HEALTH, HealthMeasurement, self._record, depth=10_000)
 
     def _record(self, m: HealthMeasurement) -> None:
         self.store.add(m)

@@ -13,11 +13,10 @@ from sqlalchemy import Integer, String, func, insert, select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Mapped, Session, mapped_column
 
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.messages import Acknowledgement, Notification
 from amiro.core.node import Node
 from amiro.environment.health_store import Base, open_engine
-from amiro.environment.topics import NOTIFICATIONS_TOPIC
 
 
 class NotificationRow(Base):
@@ -111,9 +110,9 @@ class LedgerNode(Node):
         self._replayed = False
 
     def on_start(self) -> None:
-        pub = self.create_publisher(NOTIFICATIONS_TOPIC, Notification)
-        self.create_subscription(NOTIFICATIONS_TOPIC, Notification, self._on_note, 10_000)
-        self.create_subscription(ACK_TOPIC, Acknowledgement, self.ledger.acknowledge, 10_000)
+        pub = self.create_publisher(names.NOTIFICATIONS, Notification)
+        self.create_subscription(names.NOTIFICATIONS, Notification, self._on_note, 10_000)
+        self.create_subscription(names.ACK, Acknowledgement, self.ledger.acknowledge, 10_000)
         if not self._replayed:  # once per process, not on a supervisor restart
             self._replayed = True
             for note in self.ledger.pending():

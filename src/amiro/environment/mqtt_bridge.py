@@ -19,8 +19,7 @@ from paho.mqtt.enums import CallbackAPIVersion
 from paho.mqtt.subscribeoptions import SubscribeOptions
 from pydantic import Field
 
-from amiro.behavior.engine import EVENTS_TOPIC
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.bus import Publisher
 from amiro.core.config import ConfigError, Section
 from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification, SensorReading
@@ -36,13 +35,6 @@ from amiro.environment.payloads import (
     encode_reading,
     encode_state,
     sensor_topic,
-)
-from amiro.environment.topics import (
-    DEVICE_COMMAND_TOPIC,
-    DEVICE_STATE_TOPIC,
-    HEALTH_TOPIC,
-    NOTIFICATIONS_TOPIC,
-    SENSORS_TOPIC,
 )
 
 
@@ -86,15 +78,15 @@ class MqttBridgeNode(Node):
     # --- lifecycle ------------------------------------------------------------------------
     def on_start(self) -> None:
         self.pubs: dict[str, Publisher[Any]] = {
-            "sensor": self.create_publisher(SENSORS_TOPIC, SensorReading),
-            "health": self.create_publisher(HEALTH_TOPIC, HealthMeasurement),
-            "notification": self.create_publisher(NOTIFICATIONS_TOPIC, Notification),
-            "command": self.create_publisher(DEVICE_COMMAND_TOPIC, DeviceCommand),
+            "sensor": self.create_publisher(names.SENSORS, SensorReading),
+            "health": self.create_publisher(names.HEALTH, HealthMeasurement),
+            "notification": self.create_publisher(names.NOTIFICATIONS, Notification),
+            "command": self.create_publisher(names.DEVICE_COMMAND, DeviceCommand),
         }
-        self.create_subscription(SENSORS_TOPIC, SensorReading, self._export_reading, 1000)
-        self.create_subscription(DEVICE_STATE_TOPIC, DeviceState, self._export_state, 1000)
-        self.create_subscription(ACK_TOPIC, Acknowledgement, self._export_ack, 10_000)
-        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._export_status, 1000)
+        self.create_subscription(names.SENSORS, SensorReading, self._export_reading, 1000)
+        self.create_subscription(names.DEVICE_STATE, DeviceState, self._export_state, 1000)
+        self.create_subscription(names.ACK, Acknowledgement, self._export_ack, 10_000)
+        self.create_subscription(names.EVENTS, BehaviorEvent, self._export_status, 1000)
         self.create_timer(self.config.poll_s, self._drain)
         self._injected: set[int] = set()
         self._client = self._connect()

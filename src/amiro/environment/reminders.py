@@ -14,10 +14,10 @@ from zoneinfo import ZoneInfo, ZoneInfoNotFoundError
 
 from pydantic import ConfigDict, Field, field_validator, model_validator
 
+from amiro.core import names
 from amiro.core.config import Section
 from amiro.core.messages import Notification, SensorReading
 from amiro.core.node import Node
-from amiro.environment.topics import NOTIFICATIONS_TOPIC, SENSORS_TOPIC
 
 
 class CalendarEvent(Section):
@@ -86,8 +86,8 @@ class RemindersNode(Node):
         self._readings: dict[tuple[str, str], float] = {}
 
     def on_start(self) -> None:
-        self.pub = self.create_publisher(NOTIFICATIONS_TOPIC, Notification)
-        self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, depth=1000)
+        self.pub = self.create_publisher(names.NOTIFICATIONS, Notification)
+        self.create_subscription(names.SENSORS, SensorReading, self._on_reading, depth=1000)
         now = self.local_now()
         for reminder in self.config.reminders:
             if reminder.daily_at is not None:

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from amiro.core import names
 from amiro.core.config import Section
 from amiro.core.messages import Notification, SensorReading
 from amiro.core.node import Node
 from amiro.environment.messages import HealthMeasurement
-from amiro.environment.topics import HEALTH_TOPIC, NOTIFICATIONS_TOPIC, SENSORS_TOPIC
 
 
 class _Threshold(Section):
@@ -79,9 +79,9 @@ class RulesNode(Node):
         self._state: dict[tuple[str, str], _RuleState] = {}
 
     def on_start(self) -> None:
-        self.pub = self.create_publisher(NOTIFICATIONS_TOPIC, Notification)
-        self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, depth=100)
-        self.create_subscription(HEALTH_TOPIC, HealthMeasurement, self._on_health, depth=1000)
+        self.pub = self.create_publisher(names.NOTIFICATIONS, Notification)
+        self.create_subscription(names.SENSORS, SensorReading, self._on_reading, depth=100)
+        self.create_subscription(names.HEALTH, HealthMeasurement, self._on_health, depth=1000)
 
     def _on_reading(self, reading: SensorReading) -> None:
         for rule in self.rules:

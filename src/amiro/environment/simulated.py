@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from functools import partial
 
+from amiro.core import names
 from amiro.core.config import Section
 from amiro.core.messages import SensorReading
 from amiro.core.node import Node
-from amiro.environment.topics import SENSORS_TOPIC
 
 UNITS = {"temperature": "C", "humidity": "%", "luminosity": "lx"}
 DEFAULTS = {"temperature": 23.0, "humidity": 45.0, "luminosity": 300.0}
@@ -40,7 +40,7 @@ class SimulatedSensorsNode(Node):
         self._pending = sorted(config.changes, key=lambda c: c.at_s)
 
     def on_start(self) -> None:
-        self.pub = self.create_publisher(SENSORS_TOPIC, SensorReading)
+        self.pub = self.create_publisher(names.SENSORS, SensorReading)
         self.create_timer(self.config.period_s, self._publish_all)
         for change in self._pending:
             self.call_later(max(0.0, change.at_s - self.now()), partial(self._apply, change))

@@ -12,6 +12,7 @@ from typing import Protocol
 
 import numpy as np
 
+from amiro.core import names
 from amiro.core.messages import LaserScan, Odometry, Pose2D, PoseStamped
 from amiro.core.node import Node
 from amiro.navigation.amcl import AmclParams, ParticleFilter
@@ -19,10 +20,6 @@ from amiro.navigation.likelihood import LikelihoodField
 from amiro.navigation.poses import between, compose
 
 PoseCallback = Callable[[Pose2D], None]
-LOCALIZATION_TOPIC = "/amiro/localization/pose"
-INITIAL_POSE_TOPIC = "/initialpose"
-GLOBAL_LOCALIZATION_SERVICE = "/global_localization"  # as ROS amcl's std_srvs/Empty
-GROUND_TRUTH_TOPIC = "/amiro/sim/ground_truth"
 
 
 class Localizer(Protocol):
@@ -31,7 +28,7 @@ class Localizer(Protocol):
 
 
 class OracleLocalizer:
-    def __init__(self, topic: str = GROUND_TRUTH_TOPIC) -> None:
+    def __init__(self, topic: str = names.GROUND_TRUTH) -> None:
         self.topic = topic
 
     def attach(self, node: Node, on_pose: PoseCallback) -> None:
@@ -65,7 +62,7 @@ class AmclLocalizer:
 
     def attach(self, node: Node, on_pose: PoseCallback) -> None:
         self._on_pose = on_pose
-        self._pub = node.create_publisher(LOCALIZATION_TOPIC, Pose2D)
+        self._pub = node.create_publisher(names.LOCALIZATION, Pose2D)
         rng = self.rng if self.rng is not None else node.runtime.rng.spawn(1)[0]
         self.pf = pf = ParticleFilter(self.field, rng, self.params)
         if self.initial_pose is None:
@@ -74,10 +71,10 @@ class AmclLocalizer:
             pf.init_pose(self.initial_pose)
         self._anchor = None
         self._odom = None
-        node.create_subscription("/odom", Odometry, self._on_odom, depth=1)
-        node.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
-        node.create_subscription(INITIAL_POSE_TOPIC, PoseStamped, self._on_initial_pose)
-        node.create_service(GLOBAL_LOCALIZATION_SERVICE, self.global_localization)
+        node.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
+        node.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
+        node.create_subscription(names.INITIAL_POSE, PoseStamped, self._on_initial_pose)
+        node.create_service(names.GLOBAL_LOCALIZATION, self.global_localization)
 
     def global_localization(self, _request: object = None) -> int:
         """Forget the pose: the robot could be anywhere; returns the particle count."""

@@ -11,6 +11,7 @@ import itertools
 import math
 from dataclasses import dataclass
 
+from amiro.core import names
 from amiro.core.bus import ActionServer, GoalHandle
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import (
@@ -30,8 +31,6 @@ from amiro.navigation.follower import FollowerLimits, PathFollower
 from amiro.navigation.localization import Localizer, OracleLocalizer
 from amiro.navigation.planner import GlobalPlanner
 
-MOVE_TO_ACTION = "/amiro/navigation/move_to"
-EMERGENCY_STOP_TOPIC = "/amiro/emergency_stop"
 _BACKOFF_S = 1.5
 
 
@@ -106,13 +105,13 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
 
     def on_start(self) -> None:
         self.active = None
-        self.cmd_pub = self.create_publisher("/cmd_vel", Twist)
-        self.path_pub = self.create_publisher("/amiro/navigation/path", Path)
+        self.cmd_pub = self.create_publisher(names.CMD_VEL, Twist)
+        self.path_pub = self.create_publisher(names.PATH, Path)
         self.localizer.attach(self, self._on_pose)
-        self.create_subscription("/odom", Odometry, self._on_odom, depth=1)
-        self.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
-        self.create_subscription(EMERGENCY_STOP_TOPIC, String, self._on_estop)
-        self.create_action_server(MOVE_TO_ACTION, self)
+        self.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
+        self.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
+        self.create_action_server(names.MOVE_TO, self)
         self.create_timer(self.period, self._control)
 
     # --- inputs -------------------------------------------------------------------------

@@ -14,15 +14,12 @@ from typing import Any
 
 import numpy as np
 
+from amiro.core import names
 from amiro.core.bus import ActionServer, GoalHandle
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import LaserScan, Odometry, Pose2D, String, Twist
 from amiro.core.node import Node
-from amiro.navigation.move_to import EMERGENCY_STOP_TOPIC
 from amiro.navigation.poses import between
-
-FORWARD_ACTION = "/amiro/navigation/forward"
-ROTATE_ACTION = "/amiro/navigation/rotate"
 
 
 @dataclass(frozen=True)
@@ -83,7 +80,7 @@ class _Server(ActionServer[Any, PrimitiveFeedback, PrimitiveResult]):
 
 
 class PrimitivesNode(Node):
-    """Serves ``FORWARD_ACTION`` and ``ROTATE_ACTION`` (one motion at a time)."""
+    """Serves ``names.FORWARD`` and ``names.ROTATE`` (one motion at a time)."""
 
     def __init__(
         self,
@@ -105,12 +102,12 @@ class PrimitivesNode(Node):
         self.active: _Motion | None = None
 
     def on_start(self) -> None:
-        self.cmd_pub = self.create_publisher("/cmd_vel", Twist)
-        self.create_subscription("/odom", Odometry, self._on_odom, depth=1)
-        self.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
-        self.create_subscription(EMERGENCY_STOP_TOPIC, String, self._on_estop, depth=10)
-        self.create_action_server(FORWARD_ACTION, _Server(self, rotate=False))
-        self.create_action_server(ROTATE_ACTION, _Server(self, rotate=True))
+        self.cmd_pub = self.create_publisher(names.CMD_VEL, Twist)
+        self.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
+        self.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop, depth=10)
+        self.create_action_server(names.FORWARD, _Server(self, rotate=False))
+        self.create_action_server(names.ROTATE, _Server(self, rotate=True))
         self.create_timer(self.period, self._control)
 
     def _on_odom(self, msg: Odometry) -> None:

@@ -6,11 +6,10 @@ the same estimate online and keeps the trajectory (sim time, pose) for scoring.
 
 from __future__ import annotations
 
+from amiro.core import names
 from amiro.core.messages import LaserScan, Odometry, Pose2D
 from amiro.core.node import Node
 from amiro.navigation.slam import HectorSlam, SlamParams
-
-SLAM_POSE_TOPIC = "/amiro/slam/pose"
 
 
 class SlamNode(Node):
@@ -25,9 +24,9 @@ class SlamNode(Node):
         self._odom: Pose2D | None = None
 
     def on_start(self) -> None:
-        self.pose_pub = self.create_publisher(SLAM_POSE_TOPIC, Pose2D)
-        self.create_subscription("/odom", Odometry, self._on_odom, depth=1)
-        self.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
+        self.pose_pub = self.create_publisher(names.SLAM_POSE, Pose2D)
+        self.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
+        self.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
 
     def _on_odom(self, msg: Odometry) -> None:
         self._odom = msg.pose.to_pose2d()

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
@@ -15,15 +16,10 @@ from amiro.navigation.config import NavigationConfig
 from amiro.navigation.costmap import Costmap, GridFrame, downsample
 from amiro.navigation.follower import FollowerLimits
 from amiro.navigation.likelihood import LikelihoodField
-from amiro.navigation.localization import (
-    GROUND_TRUTH_TOPIC,
-    AmclLocalizer,
-    Localizer,
-    OracleLocalizer,
-)
+from amiro.navigation.localization import AmclLocalizer, Localizer, OracleLocalizer
 from amiro.navigation.move_to import MoveToNode
 
-__all__ = ["GROUND_TRUTH_TOPIC", "build_navigation", "costmap_from_map", "make_localizer"]
+__all__ = ["build_navigation", "costmap_from_map", "make_localizer"]
 
 
 def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
@@ -42,7 +38,7 @@ def make_localizer(
     rng: np.random.Generator | None = None,
 ) -> Localizer:
     if cfg.localization == "oracle":
-        return OracleLocalizer(GROUND_TRUTH_TOPIC)
+        return OracleLocalizer(names.GROUND_TRUTH)
     params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
     return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
 

@@ -15,7 +15,6 @@ import numpy as np
 
 from amiro.core.clock import wall_seconds
 from amiro.core.messages import BoundingBox2D, Detection2D, Point, Pose2D
-from amiro.perception.camera_feed import CameraFeed, RgbdFrame
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.estimation import CameraGeometry, FloatArray, Views
 from amiro.perception.faces import FaceGallery
@@ -23,6 +22,7 @@ from amiro.perception.locate import locate_people
 from amiro.perception.ports import Detector, Frame, SeenPerson
 from amiro.perception.stack import PoseSource
 from amiro.perception.tracking import Measurement, PeopleTracker
+from amiro.robot.camera_feed import CameraFeed, RgbdFrame
 
 FACE_SHARE = 0.5  # the face is looked for in this upper share of a person's box
 

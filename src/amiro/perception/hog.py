@@ -5,21 +5,11 @@ Needs opencv-python-headless 4.x (5.x dropped the HOG people detector).
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
-
 import numpy as np
 
-from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Detection2D
+from amiro.core.vision import import_cv2
 from amiro.perception.ports import Frame, require_rgb
-
-
-def import_cv2() -> Any:
-    try:
-        return importlib.import_module("cv2")
-    except ImportError as exc:
-        raise ConfigError(f"this detector needs opencv-python-headless<5: {exc}") from None
 
 
 class HogPeopleDetector:

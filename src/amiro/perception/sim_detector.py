@@ -15,6 +15,7 @@ from typing import Protocol, TypeVar
 import numpy as np
 
 from amiro.core.messages import BoundingBox2D, Detection2D
+from amiro.core.vision import iou
 from amiro.perception.config import SimDetectorSection
 from amiro.perception.ports import Frame
 from amiro.perception.sim_objects import ObjectObservation
@@ -120,19 +121,6 @@ def clip_box(b: BoundingBox2D, width: int, height: int) -> BoundingBox2D:
     u1 = min(max(b.cx + b.width / 2, u0 + 1.0), float(width))
     v1 = min(max(b.cy + b.height / 2, v0 + 1.0), float(height))
     return BoundingBox2D((u0 + u1) / 2, (v0 + v1) / 2, u1 - u0, v1 - v0)
-
-
-def iou(a: BoundingBox2D, b: BoundingBox2D) -> float:
-    """Intersection over union of two boxes."""
-    ix = min(a.cx + a.width / 2, b.cx + b.width / 2) - max(a.cx - a.width / 2, b.cx - b.width / 2)
-    iy = min(a.cy + a.height / 2, b.cy + b.height / 2) - max(
-        a.cy - a.height / 2, b.cy - b.height / 2
-    )
-    if ix <= 0 or iy <= 0:
-        return 0.0
-    inter = ix * iy
-    union = a.width * a.height + b.width * b.height - inter
-    return inter / union if union > 0 else 0.0
 
 
 class Boxed(Protocol):

@@ -25,13 +25,12 @@ from amiro.perception.estimation import (
     improved,
     paper_formula,
 )
-from amiro.perception.oracle import OraclePeopleFinder
 from amiro.perception.ports import Frame, PeopleFinder, SeenPerson
 from amiro.perception.sim_detector import SimDetector, best_match
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.tracking import Measurement, PeopleTracker
 from amiro.robot.camera import CameraObservation, HeadCamera
-from amiro.sim.simulator import Simulation
+from amiro.sim.perception_oracle import OraclePeopleFinder
 
 # Depth the simulator's camera reports for a box no resident explains (a false positive):
 # whatever lies behind it, drawn in this range (m).
@@ -149,16 +148,6 @@ class SimPeopleFinder:
         return improved(geometry, u, row, depth, views)
 
 
-def robot_views(sim: Simulation, n: int) -> Views:
-    """The simulator's true pose and head joints now, for ``n`` detections."""
-    pose = sim.robot_pose()
-    return Views.single(pose.x, pose.y, pose.theta, *sim.head_joints(), n)
-
-
-def camera_geometry(sim: Simulation) -> CameraGeometry:
-    return CameraGeometry.from_info(sim.camera_info(), *sim.camera_mount())
-
-
 def build_people_finder(
     camera: HeadCamera,
     rng: np.random.Generator,
@@ -171,7 +160,7 @@ def build_people_finder(
     if cfg.backend == "camera":
         raise ConfigError(
             "perception.backend: camera reads a real robot's camera topics: build it with "
-            "amiro.perception.camera_stack.build_camera_modules (robot.adapter: ros2 or naoqi)"
+            "amiro.system.camera.build_camera_modules (robot.adapter: ros2 or naoqi)"
         )
     if cfg.backend == "oracle":
         return OraclePeopleFinder(camera, rng, cfg.position_noise_m)

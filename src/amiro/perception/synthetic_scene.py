@@ -17,7 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from amiro.core.messages import BoundingBox2D, Pose2D
-from amiro.perception.hog import import_cv2
+from amiro.core.vision import import_cv2
 from amiro.robot.camera import Camera
 
 FloatArray = npt.NDArray[np.float64]

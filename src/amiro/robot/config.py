@@ -13,7 +13,7 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from amiro.core.config import Section
-from amiro.ros2.config import RosSection
+from amiro.ros2.context import RosSection
 
 NaoqiChannel = Literal["say", "display", "head", "base", "posture", "odom"]
 ALL_NAOQI: tuple[NaoqiChannel, ...] = ("say", "display", "head", "base", "posture", "odom")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from amiro.core import names
 from amiro.core.messages import Twist
 from amiro.robot.profile import BaseType, Head, Limits
 
@@ -74,7 +75,7 @@ class VelocityLimiter:
 
 def clamp_head(head: Head, targets: dict[str, float]) -> dict[str, float]:
     """amiro's ``HeadYaw``/``HeadPitch`` targets within the joint ranges (others dropped)."""
-    ranges = {"HeadYaw": head.yaw_limits, "HeadPitch": head.pitch_limits}
+    ranges = {names.HEAD_YAW: head.yaw_limits, names.HEAD_PITCH: head.pitch_limits}
     return {
         joint: min(ranges[joint][1], max(ranges[joint][0], angle))
         for joint, angle in targets.items()

@@ -17,6 +17,7 @@ from collections.abc import Collection
 from typing import Any
 from urllib.parse import quote
 
+from amiro.core import names
 from amiro.core.messages import Header, JointState, Odometry, Pose2D, SpeechRequest, String, Twist
 from amiro.core.node import Node
 from amiro.robot import ports
@@ -79,19 +80,19 @@ class NaoqiRobotNode(Node):
         if "posture" in self.handles and self.settings.posture_on_start:
             self._go_to(self.settings.posture_on_start)
         if "say" in self.handles:
-            self.create_subscription(ports.SAY, SpeechRequest, self._on_say, depth=50)
+            self.create_subscription(names.SAY, SpeechRequest, self._on_say, depth=50)
         if "display" in self.handles:
-            self.create_subscription(ports.DISPLAY, String, self._on_display)
+            self.create_subscription(names.DISPLAY, String, self._on_display)
         if "head" in self.handles:
-            self.create_subscription(ports.HEAD_CMD, JointState, self._on_head)
+            self.create_subscription(names.HEAD_CMD, JointState, self._on_head)
         if "posture" in self.handles:
-            self.create_subscription(ports.POSTURE, String, lambda m: self._go_to(m.data))
+            self.create_subscription(names.POSTURE, String, lambda m: self._go_to(m.data))
         if "base" in self.handles:
-            self.create_subscription(ports.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
-            self.create_subscription(ports.EMERGENCY_STOP, String, self._on_estop)
+            self.create_subscription(names.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
+            self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
             self.create_timer(1.0 / self.profile.cmd_rate_hz, self._send_command)
         if "odom" in self.handles:
-            self.pub_odom = self.create_publisher(ports.ODOM, Odometry)
+            self.pub_odom = self.create_publisher(names.ODOM, Odometry)
             self.create_timer(self.odom_period, self._poll_odometry)
         self.create_timer(0.1, self._housekeeping)
 
@@ -131,8 +132,11 @@ class NaoqiRobotNode(Node):
     def _on_head(self, msg: JointState) -> None:
         targets = clamp_head(self.head, dict(zip(msg.name, msg.position, strict=False)))
         if targets:
-            names = {ports.HEAD_YAW: self.head.yaw_joint, ports.HEAD_PITCH: self.head.pitch_joint}
-            joints = [names[j] for j in targets]
+            joint_names = {
+                names.HEAD_YAW: self.head.yaw_joint,
+                names.HEAD_PITCH: self.head.pitch_joint,
+            }
+            joints = [joint_names[j] for j in targets]
             self.naoqi.call(MOTION, "setAngles", joints, list(targets.values()), self.head.speed)
 
     def _go_to(self, posture: str) -> None:

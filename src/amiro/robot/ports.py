@@ -6,24 +6,13 @@ so the rest of amiro never knows which robot it drives.
 
 from __future__ import annotations
 
+from amiro.core import names
+
 # robot -> amiro
-SCAN = "/scan"  # LaserScan, frame "laser" at the base's centre
-ODOM = "/odom"  # Odometry, odom -> base_footprint
-TF = "/tf"  # TransformStamped, odom -> base_footprint
-JOINT_STATES = "/joint_states"  # JointState, HeadYaw / HeadPitch
-IMAGE = "/camera/image_raw"  # Image, rgb8
-DEPTH = "/camera/depth/image_raw"  # Image, 32FC1 metres
-CAMERA_INFO = "/camera/camera_info"  # CameraInfo
 
 # amiro -> robot
-CMD_VEL = "/cmd_vel"  # Twist, base frame
-HEAD_CMD = "/amiro/head/cmd"  # JointState targets, HeadYaw / HeadPitch
-SAY = "/amiro/say"  # SpeechRequest
-DISPLAY = "/amiro/display"  # String: text, or a URL for a web view
-POSTURE = "/amiro/posture"  # String: a posture name ("Stand", "Crouch")
-EMERGENCY_STOP = "/amiro/emergency_stop"  # String: "stop"/"true"/"on"/"1" engages
 
-HEAD_YAW, HEAD_PITCH = "HeadYaw", "HeadPitch"
+HEAD_YAW, HEAD_PITCH = names.HEAD_YAW, names.HEAD_PITCH
 
 
 def estop_engaged(msg: str) -> bool:

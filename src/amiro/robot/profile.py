@@ -13,6 +13,7 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from amiro.core import names
 from amiro.core.config import ConfigError, Section, load
 
 BaseType = Literal["differential", "omnidirectional"]
@@ -50,10 +51,10 @@ class Frames(Section):
 class Topics(Section):
     """The driver's topic names; None where the robot has no such topic."""
 
-    scan: str = "/scan"
-    odom: str = "/odom"
-    cmd_vel: str = "/cmd_vel"
-    joint_states: str | None = "/joint_states"
+    scan: str = names.SCAN
+    odom: str = names.ODOM
+    cmd_vel: str = names.CMD_VEL
+    joint_states: str | None = names.JOINT_STATES
     head_cmd: str | None = Field(default=None, description="sensor_msgs/JointState targets")
     speech: str | None = Field(default=None, description="std_msgs/String text to say")
     image: str | None = None
@@ -64,8 +65,8 @@ class Topics(Section):
 class Head(Section):
     """The pan-tilt head: the driver's joint names and their ranges (rad)."""
 
-    yaw_joint: str = "HeadYaw"
-    pitch_joint: str = "HeadPitch"
+    yaw_joint: str = names.HEAD_YAW
+    pitch_joint: str = names.HEAD_PITCH
     yaw_limits: tuple[float, float]
     pitch_limits: tuple[float, float]
     speed: float = Field(default=0.2, gt=0, le=1, description="NAOqi: fraction of max speed")

@@ -15,6 +15,7 @@ from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.core import names
 from amiro.core.messages import (
     CameraInfo,
     Header,
@@ -98,7 +99,7 @@ class Ros2RobotNode(Node):
         self._inbound(t.odom, "nav_msgs/msg/Odometry", self._on_odom, depth=1)
         if t.joint_states:
             self._inbound(t.joint_states, "sensor_msgs/msg/JointState", self._on_joints)
-        for topic, port in ((t.image, ports.IMAGE), (t.depth, ports.DEPTH)):
+        for topic, port in ((t.image, names.IMAGE), (t.depth, names.DEPTH)):
             if topic:
                 self._inbound(topic, "sensor_msgs/msg/Image", self._image_to(port), depth=1)
         if t.camera_info:
@@ -138,8 +139,10 @@ class Ros2RobotNode(Node):
     def _on_joints(self, msg: Any) -> None:
         joints = bus_joints(msg)
         head = self.profile.head
-        names = {head.yaw_joint: ports.HEAD_YAW, head.pitch_joint: ports.HEAD_PITCH} if head else {}
-        renamed = tuple(names.get(n, n) for n in joints.name)
+        joint_names = (
+            {head.yaw_joint: names.HEAD_YAW, head.pitch_joint: names.HEAD_PITCH} if head else {}
+        )
+        renamed = tuple(joint_names.get(n, n) for n in joints.name)
         self.pub_joints.publish(JointState(Header(self.now(), ""), renamed, joints.position))
 
     def _image_to(self, port: str) -> Callable[[Any], None]:
@@ -163,20 +166,20 @@ class Ros2RobotNode(Node):
     def on_start(self) -> None:
         self.limiter.reset()
         self._wanted, self._wanted_at = Twist(), -math.inf
-        self.pub_scan = self.create_publisher(ports.SCAN, LaserScan)
-        self.pub_odom = self.create_publisher(ports.ODOM, Odometry)
-        self.pub_tf = self.create_publisher(ports.TF, TransformStamped)
-        self.pub_joints = self.create_publisher(ports.JOINT_STATES, JointState)
-        self.pubs_image = {p: self.create_publisher(p, Image) for p in (ports.IMAGE, ports.DEPTH)}
-        self.pub_info = self.create_publisher(ports.CAMERA_INFO, CameraInfo)
-        self.create_subscription(ports.EMERGENCY_STOP, String, self._on_estop)
+        self.pub_scan = self.create_publisher(names.SCAN, LaserScan)
+        self.pub_odom = self.create_publisher(names.ODOM, Odometry)
+        self.pub_tf = self.create_publisher(names.TF, TransformStamped)
+        self.pub_joints = self.create_publisher(names.JOINT_STATES, JointState)
+        self.pubs_image = {p: self.create_publisher(p, Image) for p in (names.IMAGE, names.DEPTH)}
+        self.pub_info = self.create_publisher(names.CAMERA_INFO, CameraInfo)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
         if "base" not in self.skip:
-            self.create_subscription(ports.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
+            self.create_subscription(names.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
             self.create_timer(1.0 / self.profile.cmd_rate_hz, self._send_command)
         if self.head_pub is not None:
-            self.create_subscription(ports.HEAD_CMD, JointState, self._on_head)
+            self.create_subscription(names.HEAD_CMD, JointState, self._on_head)
         if self.speech_pub is not None:
-            self.create_subscription(ports.SAY, SpeechRequest, self._on_say)
+            self.create_subscription(names.SAY, SpeechRequest, self._on_say)
         self.create_timer(self.pump_period, self.pump)
 
     def on_stop(self) -> None:
@@ -213,9 +216,9 @@ class Ros2RobotNode(Node):
         targets = clamp_head(head, dict(zip(msg.name, msg.position, strict=False)))
         if not targets:
             return
-        names = {ports.HEAD_YAW: head.yaw_joint, ports.HEAD_PITCH: head.pitch_joint}
+        joint_names = {names.HEAD_YAW: head.yaw_joint, names.HEAD_PITCH: head.pitch_joint}
         out = JointState(
-            Header(self.now(), ""), tuple(names[j] for j in targets), tuple(targets.values())
+            Header(self.now(), ""), tuple(joint_names[j] for j in targets), tuple(targets.values())
         )
         self.head_pub.publish(ros_joints(self.ros.types, out, self.now()))
         self.stats.head_commands += 1

@@ -1,1 +1,3 @@
-"""ROS 2 bridge: the bus over DDS, standard message types, split deployments and launch."""
+"""ROS 2 transport: the bus over DDS (topics, services, actions), standard message
+conversion, contexts and domains, and the interface packages built at setup.  Deployment
+roles live in :mod:`amiro.deploy`."""

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from amiro.core import names
 from amiro.core.clock import SimClock, wall_seconds
 from amiro.core.messages import Header, LaserScan, String
 from amiro.core.runtime import Runtime
@@ -118,7 +119,7 @@ def _in_process(make: Callable[[int], Any], msg_type: type, seconds: float) -> d
 
 
 def bench_bridge(seconds: float = 3.0, domain_id: int | None = None) -> dict[str, Any]:
-    topics = ["/scan", "/amiro/display"]
+    topics = [names.SCAN, names.DISPLAY]
     ros_a, ros_b = RosContext("amiro_bench_a", domain_id), RosContext("amiro_bench_b", domain_id)
     a, b = Runtime(SimClock()), Runtime(SimClock())
     a.add(Ros2Bridge(ros_a, publish=topics))
@@ -130,8 +131,8 @@ def bench_bridge(seconds: float = 3.0, domain_id: int | None = None) -> dict[str
         time.sleep(1.0)  # let the publishers and subscriptions match
         ros_b.spin(0.1)
         result = {
-            "laser_scan_720": _measure(a, b, "/scan", LaserScan, _scan, seconds, 10.0),
-            "string_small": _measure(a, b, "/amiro/display", String, _string, seconds, 100.0),
+            "laser_scan_720": _measure(a, b, names.SCAN, LaserScan, _scan, seconds, 10.0),
+            "string_small": _measure(a, b, names.DISPLAY, String, _string, seconds, 100.0),
             "in_process_bus": {
                 "laser_scan_720": _in_process(_scan, LaserScan, seconds / 3),
                 "string_small": _in_process(_string, String, seconds / 3),

@@ -10,12 +10,12 @@ from __future__ import annotations
 import time
 from datetime import datetime, timedelta
 
+from amiro.core import names
 from amiro.core.clock import SIM_EPOCH
 from amiro.core.node import Node
 from amiro.ros2.context import RosContext
 from amiro.ros2.convert import ros_time, seconds
 
-CLOCK_TOPIC = "/clock"
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 
 
@@ -26,7 +26,7 @@ class ClockPublisher(Node):
         super().__init__("clock")
         self.ros = ros
         self.period = period
-        self.pub = ros.publisher(CLOCK_TYPE, CLOCK_TOPIC, depth=1)
+        self.pub = ros.publisher(CLOCK_TYPE, names.CLOCK, depth=1)
 
     def on_start(self) -> None:
         self.publish()
@@ -50,7 +50,7 @@ class FollowedClock:
         self._now = 0.0
         self.received = 0
         self.stopping = False
-        ros.subscribe(CLOCK_TYPE, CLOCK_TOPIC, self._on_clock, depth=1)
+        ros.subscribe(CLOCK_TYPE, names.CLOCK, self._on_clock, depth=1)
 
     def _on_clock(self, msg: object) -> None:
         self._now = max(self._now, seconds(msg.clock))  # type: ignore[attr-defined]

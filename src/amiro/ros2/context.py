@@ -11,9 +11,19 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from amiro.core.config import ConfigError
+from pydantic import Field
+
+from amiro.core.config import ConfigError, Section
 from amiro.ros2 import env as ros_env
 from amiro.ros2.types import RclpyTypes
+
+
+class RosSection(Section):
+    """Where a process meets ROS 2: its DDS domain, loopback only or not, its node name."""
+
+    domain_id: int | None = Field(default=None, ge=0, le=ros_env.MAX_DOMAIN_ID)
+    localhost_only: bool = True
+    node_name: str | None = Field(default=None, description="default: amiro_<process name>")
 
 
 def _rclpy() -> Any:

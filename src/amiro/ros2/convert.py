@@ -16,8 +16,8 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 from pydantic import TypeAdapter
 
-from amiro.activity.skeleton import NUM_JOINTS
 from amiro.core.messages import (
+    SKELETON_JOINTS,
     BehaviorEvent,
     CameraInfo,
     Header,
@@ -438,10 +438,12 @@ def bus_skeleton(msg: Any) -> Skeleton:
         raise ValueError(f"a skeleton is a JSON object with {', '.join(sorted(SKELETON_KEYS))}")
     joints = np.asarray(data["joints"], dtype=np.float64)
     tracked = np.asarray(data["tracked"], dtype=np.bool_)
-    if joints.shape != (3 * NUM_JOINTS,) or tracked.shape != (NUM_JOINTS,):
-        raise ValueError(f"a skeleton has {NUM_JOINTS} joints of x, y, z and a tracked flag each")
+    if joints.shape != (3 * SKELETON_JOINTS,) or tracked.shape != (SKELETON_JOINTS,):
+        raise ValueError(
+            f"a skeleton has {SKELETON_JOINTS} joints of x, y, z and a tracked flag each"
+        )
     header = Header(float(data["stamp"]), str(data["frame_id"]))
-    return Skeleton(header, int(data["body_id"]), joints.reshape(NUM_JOINTS, 3), tracked)
+    return Skeleton(header, int(data["body_id"]), joints.reshape(SKELETON_JOINTS, 3), tracked)
 
 
 STANDARD_CODECS: tuple[Codec[Any], ...] = (

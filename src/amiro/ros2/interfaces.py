@@ -15,17 +15,6 @@ from typing import Any, Generic, TypeVar
 
 from pydantic import TypeAdapter, ValidationError
 
-from amiro.core.config import ConfigError
-from amiro.core.messages import SpeechHeard
-from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToResult
-from amiro.ros2.behaviors import (
-    BEHAVIOR_ACTION,
-    BehaviorFeedback,
-    BehaviorGoal,
-    BehaviorResult,
-)
-from amiro.ros2.dialogue import UNDERSTAND_SERVICE, Understood
-
 T = TypeVar("T")
 
 
@@ -92,43 +81,3 @@ def action_spec(
 
 def service_spec(name: str, request: type, response: type, timeout_s: float = 5.0) -> ServiceSpec:
     return ServiceSpec(name, Payload(request), Payload(response), timeout_s)
-
-
-ACTIONS: dict[str, ActionSpec] = {
-    spec.name: spec
-    for spec in (
-        action_spec(
-            MOVE_TO_ACTION,
-            MoveToGoal,
-            MoveToFeedback,
-            MoveToResult,
-            lambda reason: MoveToResult(False, reason),
-        ),
-        action_spec(
-            BEHAVIOR_ACTION,
-            BehaviorGoal,
-            BehaviorFeedback,
-            BehaviorResult,
-            lambda reason: BehaviorResult(False, reason),
-        ),
-    )
-}
-
-
-def known_action(name: str) -> ActionSpec:
-    spec = ACTIONS.get(name)
-    if spec is None:
-        raise ConfigError(f"no ROS 2 action named {name} (known: {', '.join(sorted(ACTIONS))})")
-    return spec
-
-
-SERVICES: dict[str, ServiceSpec] = {
-    spec.name: spec for spec in (service_spec(UNDERSTAND_SERVICE, SpeechHeard, Understood),)
-}
-
-
-def known_service(name: str) -> ServiceSpec:
-    spec = SERVICES.get(name)
-    if spec is None:
-        raise ConfigError(f"no ROS 2 service named {name} (known: {', '.join(sorted(SERVICES))})")
-    return spec

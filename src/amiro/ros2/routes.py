@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.messages import (
     Acknowledgement,
@@ -31,15 +32,7 @@ from amiro.core.messages import (
     TransformStamped,
     Twist,
 )
-from amiro.ros2.boundary import (
-    HEARTBEAT_TOPIC,
-    OBSERVATIONS_TOPIC,
-    SKELETONS_TOPIC,
-    CameraObservations,
-    Heartbeat,
-)
 from amiro.ros2.convert import STANDARD_CODECS, Codec, json_codec
-from amiro.ros2.people import PEOPLE_TOPIC
 
 
 @dataclass(frozen=True)
@@ -58,37 +51,41 @@ ROUTES: dict[str, Route] = {
     r.topic: r
     for r in (
         # CONTRACTS.md section 5
-        Route("/scan", _standard(LaserScan)),
-        Route("/odom", _standard(Odometry)),
-        Route("/cmd_vel", _standard(Twist)),
-        Route("/map", _standard(OccupancyGrid), latched=True, depth=1),
-        Route("/tf", _standard(TransformStamped), depth=100),
-        Route("/tf_static", _standard(TransformStamped), latched=True, depth=100),
-        Route("/goal_pose", _standard(PoseStamped)),
-        Route("/amiro/say", _standard(SpeechRequest)),
-        Route("/amiro/events", _standard(BehaviorEvent), depth=1000),
+        Route(names.SCAN, _standard(LaserScan)),
+        Route(names.ODOM, _standard(Odometry)),
+        Route(names.CMD_VEL, _standard(Twist)),
+        Route(names.MAP, _standard(OccupancyGrid), latched=True, depth=1),
+        Route(names.TF, _standard(TransformStamped), depth=100),
+        Route(names.TF_STATIC, _standard(TransformStamped), latched=True, depth=100),
+        Route(names.GOAL_POSE, _standard(PoseStamped)),
+        Route(names.SAY, _standard(SpeechRequest)),
+        Route(names.EVENTS, _standard(BehaviorEvent), depth=1000),
         # amiro's robot-side topics
-        Route("/joint_states", _standard(JointState)),
-        Route("/amiro/head/cmd", _standard(JointState)),
-        Route("/amiro/display", _standard(String)),
-        Route("/amiro/emergency_stop", _standard(String)),
-        Route("/amiro/posture", _standard(String)),
-        Route("/camera/image_raw", _standard(Image), depth=2),
-        Route("/camera/depth/image_raw", _standard(Image), depth=2),
-        Route("/camera/camera_info", _standard(CameraInfo), depth=2),
-        Route("/amiro/speech/heard", json_codec(SpeechHeard), depth=50),
-        Route("/amiro/sim/ground_truth", _standard(Pose2D), depth=1),
-        Route("/amiro/localization/pose", _standard(Pose2D), depth=1),
-        Route(OBSERVATIONS_TOPIC, json_codec(CameraObservations), depth=1),
-        Route(SKELETONS_TOPIC, _standard(Skeleton), depth=200),  # a person's history at once
-        Route(PEOPLE_TOPIC, json_codec(People), depth=1),  # the edge's tracks, for the dashboard
+        Route(names.JOINT_STATES, _standard(JointState)),
+        Route(names.HEAD_CMD, _standard(JointState)),
+        Route(names.DISPLAY, _standard(String)),
+        Route(names.EMERGENCY_STOP, _standard(String)),
+        Route(names.POSTURE, _standard(String)),
+        Route(names.IMAGE, _standard(Image), depth=2),
+        Route(names.DEPTH, _standard(Image), depth=2),
+        Route(names.CAMERA_INFO, _standard(CameraInfo), depth=2),
+        Route(names.HEARD, json_codec(SpeechHeard), depth=50),
+        Route(names.GROUND_TRUTH, _standard(Pose2D), depth=1),
+        Route(names.LOCALIZATION, _standard(Pose2D), depth=1),
+        Route(names.SKELETONS, _standard(Skeleton), depth=200),  # a person's history at once
+        Route(names.PEOPLE, json_codec(People), depth=1),  # the edge's tracks, for the dashboard
         # smart environment and deployment health
-        Route("/amiro/env/sensors", json_codec(SensorReading), depth=100),
-        Route("/amiro/notifications", json_codec(Notification), depth=100),
-        Route("/amiro/notifications/ack", json_codec(Acknowledgement), depth=100),
-        Route(HEARTBEAT_TOPIC, json_codec(Heartbeat), depth=50),
+        Route(names.SENSORS, json_codec(SensorReading), depth=100),
+        Route(names.NOTIFICATIONS, json_codec(Notification), depth=100),
+        Route(names.ACK, json_codec(Acknowledgement), depth=100),
     )
 }
+
+
+def add_route(r: Route) -> None:
+    """Carry a topic whose message type lives in a layer above the transport (a split
+    deployment's heartbeats, the simulated camera's frames)."""
+    ROUTES[r.topic] = r
 
 
 def route(topic: str) -> Route:

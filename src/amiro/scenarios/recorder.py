@@ -6,8 +6,7 @@ import sys
 from collections.abc import Callable
 from typing import Any, TextIO
 
-from amiro.behavior.engine import EVENTS_TOPIC
-from amiro.behavior.tasks.notify import ACK_TOPIC
+from amiro.core import names
 from amiro.core.messages import Acknowledgement, BehaviorEvent
 from amiro.core.runtime import Runtime
 
@@ -21,8 +20,8 @@ class EventRecorder:
         self.acks: list[Acknowledgement] = []
         self.live = live
         bus = runtime.bus
-        bus.subscribe(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=10_000)
-        bus.subscribe(ACK_TOPIC, Acknowledgement, self.acks.append, depth=1000)
+        bus.subscribe(names.EVENTS, BehaviorEvent, self._on_event, depth=10_000)
+        bus.subscribe(names.ACK, Acknowledgement, self.acks.append, depth=1000)
 
     def _add(self, event: dict[str, Any]) -> None:
         self.events.append(event)

@@ -24,6 +24,7 @@ from functools import partial
 
 import numpy as np
 
+from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.messages import (
     CameraInfo,
@@ -52,7 +53,7 @@ from amiro.sim.lidar import Lidar, LidarParams
 from amiro.sim.messages import Collision, EmergencyStop
 from amiro.sim.residents import DRINK_DURATION, Reply, Resident, ScriptedReply
 
-HEAD_JOINTS = ("HeadYaw", "HeadPitch")
+HEAD_JOINTS = (names.HEAD_YAW, names.HEAD_PITCH)
 
 
 class SimRobotNode(Node):
@@ -107,14 +108,14 @@ class SimRobotNode(Node):
     def on_start(self) -> None:
         self.base.stop()
         self._last_cmd = -math.inf
-        self.create_subscription("/cmd_vel", Twist, self._on_cmd_vel)
-        self.create_subscription("/amiro/head/cmd", JointState, self._on_head_cmd)
+        self.create_subscription(names.CMD_VEL, Twist, self._on_cmd_vel)
+        self.create_subscription(names.HEAD_CMD, JointState, self._on_head_cmd)
         self.create_subscription("/amiro/sim/emergency_stop", EmergencyStop, self._on_estop)
-        self.pub_odom = self.create_publisher("/odom", Odometry)
-        self.pub_tf = self.create_publisher("/tf", TransformStamped)
-        self.pub_scan = self.create_publisher("/scan", LaserScan)
-        self.pub_joints = self.create_publisher("/joint_states", JointState)
-        self.pub_truth = self.create_publisher("/amiro/sim/ground_truth", Pose2D)
+        self.pub_odom = self.create_publisher(names.ODOM, Odometry)
+        self.pub_tf = self.create_publisher(names.TF, TransformStamped)
+        self.pub_scan = self.create_publisher(names.SCAN, LaserScan)
+        self.pub_joints = self.create_publisher(names.JOINT_STATES, JointState)
+        self.pub_truth = self.create_publisher(names.GROUND_TRUTH, Pose2D)
         self.pub_collision = self.create_publisher("/amiro/sim/collision", Collision)
         self.create_timer(1.0 / self.physics_rate, self._physics)
         self.create_timer(1.0 / self.lidar.params.rate, self._scan)
@@ -126,7 +127,7 @@ class SimRobotNode(Node):
 
     def _on_head_cmd(self, msg: JointState) -> None:
         targets = dict(zip(msg.name, msg.position, strict=False))
-        self.head.command(targets.get("HeadYaw"), targets.get("HeadPitch"))
+        self.head.command(targets.get(names.HEAD_YAW), targets.get(names.HEAD_PITCH))
 
     def _on_estop(self, msg: EmergencyStop) -> None:
         self.estop = msg.engaged
@@ -196,8 +197,8 @@ class SimResidentsNode(Node):
         self.sync_obstacles()
 
     def on_start(self) -> None:
-        self.create_subscription("/amiro/say", SpeechRequest, self._on_say)
-        self.pub_heard = self.create_publisher("/amiro/speech/heard", SpeechHeard)
+        self.create_subscription(names.SAY, SpeechRequest, self._on_say)
+        self.pub_heard = self.create_publisher(names.HEARD, SpeechHeard)
         self.create_timer(self.UPDATE_PERIOD, self._update)
 
     # --- accessors ----------------------------------------------------------------------

@@ -15,12 +15,12 @@ from typing import Any, TypeVar
 from fastapi import APIRouter, HTTPException, Path, Query, Request
 
 from amiro.behavior.task import TaskError, task_types
+from amiro.core import names
 from amiro.core.messages import Notification
 from amiro.environment.assembly import Environment
 from amiro.environment.days import clock_date
 from amiro.environment.messages import DEVICE_STATES, HEALTH_METRICS, DeviceCommand
 from amiro.environment.simulated import SimulatedSensorsNode
-from amiro.environment.topics import DEVICE_COMMAND_TOPIC, NOTIFICATIONS_TOPIC
 from amiro.web.chat import ChatPort
 from amiro.web.gateway import GatewayNode
 from amiro.web.models import NAME, ChatBody, DeviceBody, ScenarioBody, SensorBody, TaskBody
@@ -62,7 +62,7 @@ def build_router(backend: Backend) -> APIRouter:
     def state() -> dict[str, Any]:
         return gw.snapshot
 
-    @router.get("/map")
+    @router.get(names.MAP)
     def home_map() -> dict[str, Any]:
         home = robot.home
         return {
@@ -97,7 +97,7 @@ def build_router(backend: Backend) -> APIRouter:
             raise HTTPException(422, f"unknown scenario '{body.name}' (known: {known})")
         ident = f"web-{body.name}-{next(counter)}"
         note = Notification(ident, body.user, body.name, body.priority, reason="dashboard")
-        await on_runtime(lambda: gw.runtime.bus.publish(NOTIFICATIONS_TOPIC, note))
+        await on_runtime(lambda: gw.runtime.bus.publish(names.NOTIFICATIONS, note))
         return {"id": ident}
 
     @router.post("/chat")
@@ -142,7 +142,7 @@ def build_router(backend: Backend) -> APIRouter:
         if body.room not in robot.home.rooms:
             raise HTTPException(422, f"no room '{body.room}'")
         cmd = DeviceCommand(env.config.home_id, body.room, body.device, body.state)
-        await on_runtime(lambda: gw.runtime.bus.publish(DEVICE_COMMAND_TOPIC, cmd))
+        await on_runtime(lambda: gw.runtime.bus.publish(names.DEVICE_COMMAND, cmd))
         return {"sent": True}
 
     @router.post("/sensors")

@@ -13,9 +13,7 @@ from collections.abc import Callable
 from concurrent.futures import Future
 from typing import Any, TypeVar
 
-from amiro.behavior.engine import EVENTS_TOPIC
-from amiro.behavior.tasks.notify import ACK_TOPIC
-from amiro.behavior.tasks.speech import HEARD_TOPIC
+from amiro.core import names
 from amiro.core.messages import (
     Acknowledgement,
     BehaviorEvent,
@@ -25,14 +23,11 @@ from amiro.core.messages import (
     SpeechRequest,
 )
 from amiro.core.node import Node
-from amiro.dialogue.output import SAY_TOPIC
 from amiro.environment.devices import SimulatedDevicesNode
 from amiro.environment.inbox import Inbox
 from amiro.environment.messages import DeviceState
-from amiro.environment.topics import DEVICE_STATE_TOPIC, SENSORS_TOPIC
 from amiro.web.robot import RobotPort
 
-PATH_TOPIC = "/amiro/navigation/path"
 T = TypeVar("T")
 
 
@@ -58,13 +53,13 @@ class GatewayNode(Node):
         self.path: list[tuple[float, float]] = []
 
     def on_start(self) -> None:
-        self.create_subscription(SAY_TOPIC, SpeechRequest, self._on_say, 100)
-        self.create_subscription(HEARD_TOPIC, SpeechHeard, self._on_heard, 100)
-        self.create_subscription(PATH_TOPIC, Path, self._on_path, 10)
-        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, 1000)
-        self.create_subscription(ACK_TOPIC, Acknowledgement, self._on_ack, 1000)
-        self.create_subscription(SENSORS_TOPIC, SensorReading, self._on_reading, 1000)
-        self.create_subscription(DEVICE_STATE_TOPIC, DeviceState, self._on_device, 1000)
+        self.create_subscription(names.SAY, SpeechRequest, self._on_say, 100)
+        self.create_subscription(names.HEARD, SpeechHeard, self._on_heard, 100)
+        self.create_subscription(names.PATH, Path, self._on_path, 10)
+        self.create_subscription(names.EVENTS, BehaviorEvent, self._on_event, 1000)
+        self.create_subscription(names.ACK, Acknowledgement, self._on_ack, 1000)
+        self.create_subscription(names.SENSORS, SensorReading, self._on_reading, 1000)
+        self.create_subscription(names.DEVICE_STATE, DeviceState, self._on_device, 1000)
         self.create_timer(self.period_s, self._tick)
         if self.devices_node is not None:  # their first reports went out before this started
             for (room, device), state in self.devices_node.states.items():

@@ -4,7 +4,7 @@ The dashboard needs little of the robot: the home's map, the behaviours it knows
 its state (pose, people, running task, queue) and a way to start a one-task behaviour.
 :class:`RobotPort` is that narrow interface: :class:`SystemRobot` implements it on the
 embedded system's objects, and the cloud process of a split deployment implements it on
-bridged topics (:mod:`amiro.ros2.web_robot`), so the same app serves both.
+bridged topics (:mod:`amiro.deploy.web_robot`), so the same app serves both.
 """
 
 from __future__ import annotations

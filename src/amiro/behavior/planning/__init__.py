@@ -1,6 +1,6 @@
 """Declarative planning (PDDL) and re-planning of the robot's errands (paper, section 3.7).
 
-The names load their submodule on first use, so ``amiro.behavior.planning.cli`` (built for
+The names load their submodule on first use, so ``amiro.commands.planning`` (built for
 ``amiro --help``) does not load the planners.
 """
 

@@ -12,12 +12,13 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, GraphRun
+from amiro.behavior.engine import BehaviorEngine, GraphRun
 from amiro.behavior.planning.dispatch import plan_graph, step_index
 from amiro.behavior.planning.explain import describe_plan, describe_step
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
 from amiro.behavior.planning.planner import HomePlanner, PlanOutcome, PlanStep
 from amiro.behavior.planning.problem import Goal, RobotState
+from amiro.core import names
 from amiro.core.messages import BehaviorEvent, Pose2D
 from amiro.core.node import Node
 
@@ -58,7 +59,7 @@ class PlanExecutive(Node):
         self._start_room = ""
 
     def on_start(self) -> None:
-        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=10_000)
+        self.create_subscription(names.EVENTS, BehaviorEvent, self._on_event, depth=10_000)
         self.create_timer(TICK_S, self._tick)
 
     # --- requests -------------------------------------------------------------------------
@@ -203,4 +204,4 @@ class PlanExecutive(Node):
         return None
 
     def _event(self, type_: str, **detail: Any) -> None:
-        self.runtime.bus.publish(EVENTS_TOPIC, BehaviorEvent(self.now(), type_, None, None, detail))
+        self.runtime.bus.publish(names.EVENTS, BehaviorEvent(self.now(), type_, None, None, detail))

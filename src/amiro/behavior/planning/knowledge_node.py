@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from amiro.behavior.engine import EVENTS_TOPIC
 from amiro.behavior.planning.door_sensing import door_state_from_scan
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.tasks import SCAN_TOPIC
+from amiro.core import names
 from amiro.core.messages import BehaviorEvent, LaserScan, Pose2D
 from amiro.core.node import Node
 
@@ -32,8 +31,8 @@ class KnowledgeNode(Node):
         self.max_range_m = max_range_m
 
     def on_start(self) -> None:
-        self.create_subscription(SCAN_TOPIC, LaserScan, self._on_scan, depth=1)
-        self.create_subscription(EVENTS_TOPIC, BehaviorEvent, self._on_event, depth=1000)
+        self.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
+        self.create_subscription(names.EVENTS, BehaviorEvent, self._on_event, depth=1000)
 
     def _on_scan(self, scan: LaserScan) -> None:
         pose = self.pose()

@@ -9,10 +9,9 @@ from __future__ import annotations
 from amiro.behavior.planning.door_sensing import door_state_from_scan
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
 from amiro.behavior.task import Task, TaskContext, TaskError, TaskStatus, make_task
+from amiro.core import names
 from amiro.core.bus import Subscription
 from amiro.core.messages import LaserScan
-
-SCAN_TOPIC = "/scan"
 
 
 class Sequence(Task):
@@ -79,7 +78,7 @@ class CheckDoor(Task):
         self.seen: DoorState | None = None
         self.scans: list[LaserScan] = []
         self.sub: Subscription[LaserScan] | None = ctx.bus.subscribe(
-            SCAN_TOPIC, LaserScan, self.scans.append, depth=1
+            names.SCAN, LaserScan, self.scans.append, depth=1
         )
 
     def _close(self) -> None:

@@ -12,9 +12,8 @@ import math
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
 from amiro.behavior.tasks.gaze import look_at
+from amiro.core import names
 from amiro.core.messages import Point, Twist
-
-CMD_VEL = "/cmd_vel"
 
 
 class RecognizeActivity(Task):
@@ -120,11 +119,11 @@ class RecognizeActivity(Task):
         if self.commanded >= self.budget:
             self._stop(ctx)
             return
-        ctx.bus.publish(CMD_VEL, Twist.planar(self.direction * self.speed, 0.0, 0.0))
+        ctx.bus.publish(names.CMD_VEL, Twist.planar(self.direction * self.speed, 0.0, 0.0))
         if self.target is not None:
             look_at(ctx, self.target)
 
     def _stop(self, ctx: TaskContext) -> None:
         if self.direction != 0:
-            ctx.bus.publish(CMD_VEL, Twist.planar(0.0, 0.0, 0.0))
+            ctx.bus.publish(names.CMD_VEL, Twist.planar(0.0, 0.0, 0.0))
         self.direction = 0

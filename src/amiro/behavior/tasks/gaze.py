@@ -5,16 +5,17 @@ from __future__ import annotations
 import math
 
 from amiro.behavior.task import TaskContext
+from amiro.core import names
 from amiro.core.messages import Header, JointState, Point
 
-HEAD_TOPIC = "/amiro/head/cmd"
 CAMERA_HEIGHT_M = 1.15  # Pepper's head camera above the floor
 
 
 def point_head(ctx: TaskContext, yaw: float, pitch: float = 0.0) -> None:
     """Head joint targets in radians (Pepper's convention: positive pitch looks down)."""
     ctx.bus.publish(
-        HEAD_TOPIC, JointState(Header(ctx.now(), ""), ("HeadYaw", "HeadPitch"), (yaw, pitch))
+        names.HEAD_CMD,
+        JointState(Header(ctx.now(), ""), (names.HEAD_YAW, names.HEAD_PITCH), (yaw, pitch)),
     )
 
 

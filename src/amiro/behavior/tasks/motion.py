@@ -5,9 +5,10 @@ from __future__ import annotations
 from typing import Any
 
 from amiro.behavior.task import Task, TaskContext, TaskError, TaskStatus
+from amiro.core import names
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.messages import Point, Pose2D
-from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToGoal, MoveToResult
+from amiro.navigation.move_to import MoveToGoal, MoveToResult
 
 
 def goal_for(target: Any, approach: float) -> MoveToGoal:
@@ -35,7 +36,7 @@ class MoveTo(Task):
         p = self.resolved(ctx)
         goal = goal_for(p["target"], float(p.get("approach", 0.8)))
         self.handle: GoalHandle[MoveToGoal, Any, MoveToResult] = ctx.bus.send_goal(
-            MOVE_TO_ACTION, goal
+            names.MOVE_TO, goal
         )
 
     def update(self, ctx: TaskContext) -> TaskStatus:

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.core import names
 from amiro.core.messages import Acknowledgement
 
-ACK_TOPIC = "/amiro/notifications/ack"
 ACK_STATUSES = ("done", "postponed", "failed")
 
 
@@ -23,7 +23,7 @@ class NotifyEnvironment(Task):
         ident = str(p.get("id", ctx.blackboard.get("notification_id", "")))
         clock = ctx.module("clock")
         ack = Acknowledgement(id=ident, status=status, ts=clock.iso(ctx.now()))
-        ctx.bus.publish(ACK_TOPIC, ack)
+        ctx.bus.publish(names.ACK, ack)
         ctx.blackboard["acked"] = status
         self.detail = {"id": ident, "status": status}
         ctx.event("ack", id=ident, status=status)

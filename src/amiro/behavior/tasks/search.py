@@ -17,9 +17,10 @@ from typing import Any
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
 from amiro.behavior.tasks.gaze import look_at, point_head
+from amiro.core import names
 from amiro.core.bus import GoalHandle
 from amiro.core.messages import Point, Pose2D
-from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToGoal
+from amiro.navigation.move_to import MoveToGoal
 
 HEAD_SWEEP = (0.0, 0.9, -0.9, 1.8, -1.8)  # rad: centre, then wider on each side
 SIDE_STEP_M = 1.0  # across the line of sight: about 20-30 degrees at 2-3 m
@@ -93,13 +94,13 @@ class Search(Task):
             pose = self._pose(ctx)
             if pose is not None:
                 target = Pose2D(pose.x, pose.y, pose.theta + float(arg))
-                self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(pose=target))
+                self.goal = ctx.bus.send_goal(names.MOVE_TO, MoveToGoal(pose=target))
         elif kind == "step":
             point_head(ctx, 0.0)
-            self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(pose=arg))
+            self.goal = ctx.bus.send_goal(names.MOVE_TO, MoveToGoal(pose=arg))
         else:
             point_head(ctx, 0.0)
-            self.goal = ctx.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place=str(arg)))
+            self.goal = ctx.bus.send_goal(names.MOVE_TO, MoveToGoal(place=str(arg)))
         return True
 
     def _side_step(self, ctx: TaskContext, person: Point) -> bool:

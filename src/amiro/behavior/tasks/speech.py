@@ -5,12 +5,10 @@ from __future__ import annotations
 from typing import Any
 
 from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.core import names
 from amiro.core.bus import Subscription
 from amiro.core.messages import SpeechHeard, String
 from amiro.dialogue.phrases import phrase
-
-HEARD_TOPIC = "/amiro/speech/heard"
-DISPLAY_TOPIC = "/amiro/display"
 
 
 def _text(params: dict[str, Any], ctx: TaskContext, lang: str) -> str:
@@ -36,7 +34,7 @@ class Say(Task):
         act = str(p.get("act", p.get("phrase", "")))
         addressee = str(p.get("to", ctx.blackboard.get("person", "")))
         duration = ctx.module("speech").say(text, lang, act, addressee)
-        ctx.bus.publish(DISPLAY_TOPIC, String(text))
+        ctx.bus.publish(names.DISPLAY, String(text))
         self._until = ctx.now() + duration
         self.detail = {"text": text, "lang": lang}
         ctx.event("say", text=text, lang=lang)
@@ -54,7 +52,7 @@ class Display(Task):
         p = self.resolved(ctx)
         lang = str(p.get("lang", ctx.blackboard.get("lang", "en")))
         text = _text(p, ctx, lang)
-        ctx.bus.publish(DISPLAY_TOPIC, String(text))
+        ctx.bus.publish(names.DISPLAY, String(text))
         self.detail = {"text": text}
 
     def update(self, ctx: TaskContext) -> TaskStatus:
@@ -77,7 +75,7 @@ class Listen(Task):
         self.deadline = ctx.now() + float(p.get("timeout_s", 10.0))
         self.heard: list[SpeechHeard] = []
         self.sub: Subscription[SpeechHeard] | None = ctx.bus.subscribe(
-            HEARD_TOPIC, SpeechHeard, self.heard.append, depth=5
+            names.HEARD, SpeechHeard, self.heard.append, depth=5
         )
 
     def _close(self) -> None:

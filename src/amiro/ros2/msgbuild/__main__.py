@@ -7,10 +7,10 @@ compiler or a bad definition is one line on stderr and exit status 2.
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
-from amiro.cli_support import add_json_flag, emit_json
 from amiro.core.config import ConfigError
 from amiro.ros2.msgbuild import build_package
 from amiro.ros2.msgbuild.package import shipped_packages
@@ -28,7 +28,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--out", type=Path, help="install prefix (default: this venv)")
     parser.add_argument("--force", action="store_true", help="rebuild even if up to date")
-    add_json_flag(parser)
+    parser.add_argument("--json", action="store_true", help="print one JSON object on stdout")
     args = parser.parse_args(argv)
     results = []
     try:
@@ -38,19 +38,21 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     if args.json:
-        emit_json(
-            {
-                "packages": [
-                    {
-                        "package": r.package,
-                        "prefix": str(r.prefix),
-                        "skipped": r.skipped,
-                        "seconds": round(r.seconds, 2),
-                        "libraries": [str(p) for p in r.libraries],
-                    }
-                    for r in results
-                ]
-            }
+        print(
+            json.dumps(
+                {
+                    "packages": [
+                        {
+                            "package": r.package,
+                            "prefix": str(r.prefix),
+                            "skipped": r.skipped,
+                            "seconds": round(r.seconds, 2),
+                            "libraries": [str(p) for p in r.libraries],
+                        }
+                        for r in results
+                    ]
+                }
+            )
         )
     else:
         for r in results:

@@ -1,0 +1,155 @@
+"""``amiro har``: train, evaluate and benchmark the activity model; read NTU skeleton files."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from amiro.commands.support import add_command, add_group, emit_json
+
+if TYPE_CHECKING:
+    from amiro.commands.support import Subcommands
+
+
+def register(sub: Subcommands) -> None:
+    cmds = add_group(
+        sub, "har", "human activity recognition: train, evaluate, bench, read", "har_command"
+    )
+    train = add_command(
+        cmds,
+        "train",
+        _train,
+        help="train the multi-stage LSTM on synthetic motion and export ONNX (needs torch)",
+    )
+    train.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
+    train.add_argument("--checkpoints", type=Path, help="folder for per-epoch checkpoints")
+    train.add_argument("--epochs", type=int, default=40)
+    train.add_argument("--seed", type=int, default=0)
+    train.add_argument("--hidden", type=int, default=64, help="LSTM and feature width")
+    train.add_argument("--per-cell", type=int, default=6, help="windows per subject/view/action")
+    train.add_argument("--max-steps", type=int, help="stop after this many optimiser steps")
+
+    export = add_command(
+        cmds, "export", _export, help="export a training checkpoint to ONNX (needs torch)"
+    )
+    export.add_argument("checkpoint", type=Path)
+    export.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
+
+    evaluate = add_command(
+        cmds,
+        "evaluate",
+        _evaluate,
+        help="accuracy: cross-subject, cross-view, confusion, missing joints",
+    )
+    evaluate.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
+    evaluate.add_argument("--ntu", type=Path, help="a folder of NTU RGB+D .skeleton files")
+    evaluate.add_argument("--seed", type=int, default=1000)
+
+    read = add_command(cmds, "read", _read, help="parse one NTU RGB+D .skeleton file")
+    read.add_argument("file", type=Path)
+
+    bench = add_command(
+        cmds, "bench", _bench, help="inference time, preprocessing included (Table 16)"
+    )
+    bench.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
+    bench.add_argument("--iterations", type=int, default=200, help="calls per round")
+    bench.add_argument("--repeats", type=int, default=7, help="rounds; the median is reported")
+
+
+def _positive(value: int | None, name: str) -> None:
+    from amiro.core.config import ConfigError
+
+    if value is not None and value <= 0:
+        raise ConfigError(f"{name} must be positive, got {value}")
+
+
+def _train(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+
+    for name in ("epochs", "hidden", "per_cell", "max_steps"):
+        _positive(getattr(args, name), "--" + name.replace("_", "-"))
+    try:
+        from amiro.activity.train import TrainConfig, train
+    except ImportError as exc:
+        raise ConfigError(
+            f"training needs the 'train' extra (pip install amiro[train]): {exc}"
+        ) from None
+    report = train(
+        TrainConfig(
+            out=args.out,
+            epochs=args.epochs,
+            hidden=args.hidden,
+            seed=args.seed,
+            per_cell=args.per_cell,
+            max_steps=args.max_steps,
+            checkpoints=args.checkpoints,
+        )
+    )
+    if args.json:
+        emit_json(report)
+    else:
+        print(f"wrote {report['out']} after {report['steps']} steps", file=sys.stderr)
+    return 0
+
+
+def _export(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+
+    if not args.checkpoint.is_file():
+        raise ConfigError(f"{args.checkpoint}: no such file")
+    try:
+        from amiro.activity.train import export_checkpoint
+    except ImportError as exc:
+        raise ConfigError(
+            f"export needs the 'train' extra (pip install amiro[train]): {exc}"
+        ) from None
+    report = export_checkpoint(args.checkpoint, args.out)
+    if args.json:
+        emit_json(report)
+    return 0
+
+
+def _evaluate(args: argparse.Namespace) -> int:
+    from amiro.activity.onnx_model import ActivityModel
+    from amiro.evaluation.activity_evaluate import evaluate_ntu, evaluate_synthetic, format_report
+
+    model = ActivityModel(args.model)
+    report = evaluate_ntu(model, args.ntu) if args.ntu else evaluate_synthetic(model, args.seed)
+    if args.json:
+        emit_json(report)
+    else:
+        print(format_report(report))
+    return 0
+
+
+def _read(args: argparse.Namespace) -> int:
+    from amiro.activity.ntu import read_skeleton_file
+
+    seq = read_skeleton_file(args.file)
+    report = seq.summary()
+    if args.json:
+        emit_json(report)
+    else:
+        bodies = ", ".join(f"{b['id']} ({b['frames']} frames)" for b in report["bodies"])
+        print(
+            f"{args.file}: {report['frames']} frames, {report['joints']} joints; bodies: {bodies}"
+        )
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from amiro.activity.bench import run_bench
+    from amiro.activity.onnx_model import ActivityModel
+
+    _positive(args.iterations, "--iterations")
+    _positive(args.repeats, "--repeats")
+    report = run_bench(ActivityModel(args.model), args.iterations, args.repeats)
+    if args.json:
+        emit_json(report)
+    else:
+        for length, ms in report["lengths"].items():
+            print(f"{length:>3} frames: {ms:.3f} ms (paper: {report['paper_ms'][length]} ms)")
+        print(f"streaming: {report['stream_ms_per_frame']:.3f} ms per frame")
+    return 0

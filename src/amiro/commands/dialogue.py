@@ -1,0 +1,159 @@
+"""``amiro nlu parse|evaluate``, ``amiro asr evaluate`` and ``amiro chat``."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from amiro.commands.support import add_command, add_group, emit_report
+
+if TYPE_CHECKING:
+    from amiro.commands.support import Subcommands
+
+ASR_BACKENDS = ("pocketsphinx", "vosk", "google")
+
+
+def register(sub: Subcommands) -> None:
+    nlu = add_group(sub, "nlu", "natural-language understanding (en, ro, fr)", dest="nlu_command")
+    parse = add_command(nlu, "parse", _parse, help="one utterance through the NLU")
+    parse.add_argument("--lang", default="en", help="en, ro or fr (default en)")
+    parse.add_argument("text", nargs="+", help="the utterance")
+    ev = add_command(
+        nlu, "evaluate", _evaluate_nlu, help="accuracy over labelled utterances (JSON lines)"
+    )
+    ev.add_argument("file", type=Path, help='JSONL: {"lang", "text", "intent", "entities"}')
+
+    asr = add_group(sub, "asr", "speech recognition", dest="asr_command")
+    aev = add_command(
+        asr, "evaluate", _evaluate_asr, help="WER, sentence accuracy and RTF over WAV files"
+    )
+    aev.add_argument("dir", type=Path, help="WAV files named by their transcript (or .txt)")
+    aev.add_argument("--lang", default="en", help="language of the recordings (default en)")
+    aev.add_argument("--backend", default="pocketsphinx", help="pocketsphinx, vosk or google")
+    aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
+    aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
+    aev.add_argument(
+        "--reject-below",
+        type=float,
+        help="reject results with a lower confidence (default: the config's, 0.5; answers 0)",
+    )
+    aev.add_argument(
+        "--out-of-grammar",
+        type=Path,
+        metavar="DIR",
+        help="WAV files that must be rejected: adds false acceptance/rejection and a ROC table",
+    )
+    syn = add_command(
+        asr, "synthesize", _synthesize, help="speak commands into WAV files (espeak-ng, noise)"
+    )
+    syn.add_argument("file", type=Path, help="commands, one per line (# comments)")
+    syn.add_argument("out", type=Path, help="directory for the WAV files")
+    syn.add_argument("--snr", type=float, help="add white noise at this SNR in dB")
+    syn.add_argument("--seed", type=int, default=0, help="noise seed (default 0)")
+    syn.add_argument(
+        "--noise-clips", type=int, default=0, metavar="N", help="also write N noise-only clips"
+    )
+
+    chat = add_command(
+        sub, "chat", _chat, help="talk to the dialogue module in a terminal", with_json=False
+    )
+    chat.add_argument("--lang", default="en", help="en, ro or fr (default en)")
+    chat.add_argument("--voice", action="store_true", help="speak through the microphone")
+
+
+def _parse(args: argparse.Namespace) -> int:
+    from amiro.dialogue.phrases import check_language
+    from amiro.dialogue.understanding import Nlu
+
+    parsed = Nlu().parse(" ".join(args.text), check_language(args.lang))
+    report = {
+        "text": parsed.text,
+        "lang": parsed.lang,
+        "intent": {"name": parsed.intent, "confidence": round(parsed.confidence, 4)},
+        "entities": parsed.entities,
+        "ranking": [{"name": n, "confidence": round(c, 4)} for n, c in parsed.ranking],
+    }
+    ents = ", ".join(f"{k}={v}" for k, v in parsed.entities.items()) or "no entities"
+    return emit_report(args, report, f"{parsed.intent} ({parsed.confidence:.2f}): {ents}")
+
+
+def _evaluate_nlu(args: argparse.Namespace) -> int:
+    from amiro.dialogue.nlu_eval import evaluate, read_jsonl
+    from amiro.dialogue.understanding import Nlu
+
+    nlu = Nlu()
+    report = evaluate(read_jsonl(args.file), lambda lang, text: nlu.parse(text, lang))
+    text = "\n".join(
+        f"{lang}: n={r['n']} intent {100 * r['intent_accuracy']:.1f}% "
+        f"entities {100 * r['entity_accuracy']:.1f}% {r['ms_per_utterance']:.2f} ms/utt"
+        for lang, r in report.items()
+    )
+    return emit_report(args, report, text)
+
+
+def _evaluate_asr(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.dialogue.asr_eval import (
+        accuracy_report,
+        describe_rates,
+        rejection_report,
+        transcribe_dir,
+    )
+    from amiro.dialogue.config import AsrConfig, DialogueConfig
+    from amiro.dialogue.phrases import check_language
+    from amiro.dialogue.stack import make_recognizer
+    from amiro.dialogue.understanding import Nlu
+
+    if args.backend not in ASR_BACKENDS:
+        raise ConfigError(f"unknown asr backend '{args.backend}' ({', '.join(ASR_BACKENDS)})")
+    defaults = AsrConfig()
+    reject_below = args.reject_below
+    if reject_below is None:
+        answers = args.grammar == "answers"
+        reject_below = defaults.listen_reject_below if answers else defaults.reject_below
+    if not 0.0 <= reject_below <= 1.0:
+        raise ConfigError(f"--reject-below {reject_below}: must be between 0 and 1")
+    # every result kept here: the report applies the thresholds itself
+    asr = AsrConfig(backend=args.backend, vosk_model=args.vosk_model, reject_below=0.0)
+    lang = check_language(args.lang)
+    recognizer = make_recognizer(DialogueConfig(asr=asr), args.grammar, lang)
+    heard = transcribe_dir(args.dir, recognizer)
+    report = accuracy_report(heard, reject_below)
+    text = (
+        f"{report['files']} files: WER {100 * report['wer']:.1f}%, sentence accuracy "
+        f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}, "
+        f"{100 * report['rejected']:.1f}% rejected below {reject_below:g}"
+    )
+    if args.out_of_grammar is not None:
+        oog = transcribe_dir(args.out_of_grammar, recognizer)
+        nlu = Nlu()
+        rejection = rejection_report(heard, oog, reject_below, lambda t: nlu.parse(t, lang).intent)
+        report.update(rejection)
+        text += "".join(f"\n{describe_rates(r)}" for r in rejection["roc"])
+    return emit_report(args, report, text)
+
+
+def _synthesize(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from amiro.core.config import ConfigError
+    from amiro.dialogue.asr_testset import read_commands, write_noise_clips, write_test_set
+    from amiro.dialogue.tts import EspeakSynthesizer
+
+    if args.noise_clips < 0:
+        raise ConfigError(f"--noise-clips {args.noise_clips}: must be 0 or more")
+    commands = read_commands(args.file)
+    rng = np.random.default_rng(args.seed)
+    written = write_test_set(commands, args.out, EspeakSynthesizer(), rng, args.snr)
+    written += write_noise_clips(args.noise_clips, args.out, rng)
+    report = {"files": len(written), "dir": str(args.out), "snr_db": args.snr}
+    noise = "clean" if args.snr is None else f"white noise at {args.snr:g} dB SNR"
+    return emit_report(args, report, f"{len(written)} WAV files in {args.out} ({noise})")
+
+
+def _chat(args: argparse.Namespace) -> int:
+    from amiro.dialogue.chat import run_chat
+    from amiro.dialogue.phrases import check_language
+
+    return run_chat(check_language(args.lang), args.voice)
