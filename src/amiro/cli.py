@@ -36,7 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     import amiro.commands.recording as recording_cli
     import amiro.commands.robot as robot_cli
     import amiro.commands.scenarios as scenarios_cli
-    import amiro.serve as serve_cli
+    import amiro.commands.serve as serve_cli
 
     parser = _Parser(
         prog="amiro",

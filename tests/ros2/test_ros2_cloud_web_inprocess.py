@@ -29,8 +29,8 @@ from amiro.deploy.process import system_config
 from amiro.deploy.roles import build_cloud_role
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.stack import build_dialogue
-from amiro.serve import RuntimeLoop
 from amiro.web.config import WebConfig
+from amiro.web.served import RuntimeLoop
 
 PASSWORD = "cloud dashboard password"
 

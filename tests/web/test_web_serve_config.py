@@ -7,8 +7,9 @@ from pathlib import Path
 
 import pytest
 
+from amiro.commands.serve import apply_flags
 from amiro.core.config import ConfigError
-from amiro.serve import apply_flags, load_serve_config
+from amiro.web.served import load_serve_config
 
 FILE = """
 environment:

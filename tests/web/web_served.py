@@ -10,8 +10,8 @@ from fastapi.testclient import TestClient
 from pydantic import SecretStr
 
 from amiro.core.clock import SimClock
-from amiro.serve import RuntimeLoop, Served, assemble, load_serve_config
 from amiro.web.config import WebConfig
+from amiro.web.served import RuntimeLoop, Served, assemble, load_serve_config
 
 PASSWORD = "correct horse battery staple"
 TOKEN = "test-token-0123456789"

@@ -98,10 +98,6 @@ class TaskGraph:
             raise TaskError(f"behaviour {self.name} has no tasks")
         return next(iter(self.tasks))
 
-    def set_entry(self, task_id: str) -> TaskGraph:
-        self._entry = task_id
-        return self
-
     def add(
         self,
         task_id: str,

@@ -234,12 +234,6 @@ class Detection2D:
 
 
 @dataclass(frozen=True, slots=True)
-class Detection2DArray:
-    header: Header
-    detections: tuple[Detection2D, ...]
-
-
-@dataclass(frozen=True, slots=True)
 class Person:
     """A tracked person in the map frame (people_msgs/Person-like)."""
 

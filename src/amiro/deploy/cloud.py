@@ -128,11 +128,11 @@ def _serve(
     sensors: SimulatedSensorsNode,
     dialogue: Dialogue,
 ) -> str:
-    from amiro.serve import make_authenticator
     from amiro.web.api import Backend
     from amiro.web.app import create_app
     from amiro.web.chat import DialogueChat
     from amiro.web.gateway import GatewayNode
+    from amiro.web.served import make_authenticator
 
     gateway = runtime.add(GatewayNode(robot, environment.devices))
     backend = Backend(robot, environment, sensors, gateway, DialogueChat(dialogue.manager))

@@ -42,10 +42,6 @@ class Nlu:
             self._custom[lang] = LanguageNlu(load_training_data(path), self.threshold)
         return self._custom[lang]
 
-    def train_all(self) -> None:
-        for lang in LANGUAGES:
-            self.model(lang)
-
     def parse(self, text: str, lang: str) -> Parse:
         return self.model(lang).parse(text)
 

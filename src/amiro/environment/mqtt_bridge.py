@@ -22,10 +22,10 @@ from pydantic import Field
 from amiro.core import names
 from amiro.core.bus import Publisher
 from amiro.core.config import ConfigError, Section
+from amiro.core.inbox import Inbox
 from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification, SensorReading
 from amiro.core.node import Node
 from amiro.environment.discovery import availability_topic, discovery_messages, status_topic
-from amiro.environment.inbox import Inbox
 from amiro.environment.messages import DeviceCommand, DeviceState, HealthMeasurement
 from amiro.environment.payloads import (
     PayloadError,

@@ -103,8 +103,8 @@ def bench_health(
 
 def bench_web(requests: int = 2000) -> dict[str, float]:
     """Authenticated GET /api/state and a health query, in process (no network)."""
-    from amiro.serve import assemble, load_serve_config
     from amiro.web.config import WebConfig
+    from amiro.web.served import assemble, load_serve_config
 
     cfg = load_serve_config(None)
     web = WebConfig(admin_password=SecretStr("bench"), api_token=SecretStr("bench-token"))

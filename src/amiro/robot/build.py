@@ -8,7 +8,7 @@ called after the runtime has stopped, so the adapters' last commands (stop the b
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 from amiro.core.config import ConfigError
 from amiro.core.runtime import Runtime
@@ -21,10 +21,19 @@ from amiro.robot.ros2_adapter import Ros2RobotNode
 
 @dataclass
 class RealRobot:
+    """The :class:`~amiro.robot.adapter.RobotAdapter` of a real robot: its ROS 2 driver's
+    topics, and NAOqi for the channels configured to go there."""
+
+    simulated: ClassVar[bool] = False
     profile: RobotProfile
     ros2: Ros2RobotNode | None = None
     naoqi: NaoqiRobotNode | None = None
     _closers: list[Any] = field(default_factory=list)
+
+    @classmethod
+    def build(cls, runtime: Runtime, config: Any) -> RealRobot:
+        """The adapters ``config.robot`` asks for."""
+        return build_robot(runtime, config.robot)
 
     def stats(self) -> dict[str, Any]:
         out: dict[str, Any] = {}

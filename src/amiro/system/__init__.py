@@ -47,11 +47,13 @@ from amiro.navigation.stack import build_navigation
 from amiro.perception.config import PerceptionConfig
 from amiro.perception.ports import PeopleFinder
 from amiro.perception.stack import PoseSource, build_people_finder
-from amiro.robot.build import RealRobot, build_robot
+from amiro.robot.adapter import RobotAdapter, adapter_type
+from amiro.robot.build import RealRobot
 from amiro.robot.camera import HeadCamera
 from amiro.robot.config import RobotConfig
+from amiro.sim.adapter import SimAdapter
 from amiro.sim.config import SimConfig
-from amiro.sim.simulator import Simulation, build_sim
+from amiro.sim.simulator import Simulation
 from amiro.sim.skeletons import SkeletonCamera
 from amiro.system.dialogue_sources import environment_sources
 
@@ -111,13 +113,11 @@ class PersonInView:
 
 @dataclass
 class System:
-    """What :func:`build_system` made.  Exactly one of ``sim`` (the simulated home) and
-    ``robot`` (a real robot's adapters) is set."""
+    """What :func:`build_system` made, on one robot adapter."""
 
     config: SystemConfig
     runtime: Runtime
-    sim: Simulation | None
-    robot: RealRobot | None
+    adapter: RobotAdapter
     world: World
     navigation: MoveToNode
     engine: BehaviorEngine
@@ -129,13 +129,22 @@ class System:
     environment: Environment
     camera_people: CameraPeopleFinder | None = None  # a real robot's camera tracks
 
+    @property
+    def sim(self) -> Simulation | None:
+        """The simulated home, when the adapter is the simulator."""
+        return self.adapter.simulation if isinstance(self.adapter, SimAdapter) else None
+
+    @property
+    def robot(self) -> RealRobot | None:
+        """A real robot's adapters, when the adapter is one."""
+        return self.adapter if isinstance(self.adapter, RealRobot) else None
+
     def start(self) -> None:
         self.runtime.start()
 
     def stop(self) -> None:
         self.runtime.stop()
-        if self.robot is not None:  # after the runtime: the adapters' last commands go out
-            self.robot.close()
+        self.adapter.close()  # after the runtime: the adapters' last commands go out
         self.environment.close()
 
     def robot_pose(self) -> Pose2D | None:
@@ -241,27 +250,30 @@ def build_behavior_layer(
 
 
 def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
-    """Everything in one runtime, seeded by ``cfg.seed``: on the simulated home by default
-    (a :class:`SimClock`), on a real robot with ``robot.adapter`` ros2/naoqi (a
-    :class:`WallClock`)."""
-    if cfg.robot.adapter == "sim":
-        return _build_on_sim(cfg, Runtime(clock or SimClock(), seed=cfg.seed))
-    return _build_on_robot(cfg, Runtime(clock or WallClock(), seed=cfg.seed))
+    """Everything in one runtime, seeded by ``cfg.seed``, on the robot adapter
+    ``robot.adapter`` names: the simulated home by default (a :class:`SimClock`), a real
+    robot's ROS 2 / NAOqi adapters otherwise (a :class:`WallClock`)."""
+    adapter = adapter_type(cfg.robot.adapter)
+    runtime = Runtime(clock or (SimClock() if adapter.simulated else WallClock()), seed=cfg.seed)
+    if adapter is SimAdapter:
+        return _build_on_sim(cfg, runtime)
+    return _build_on_robot(cfg, runtime, adapter)
 
 
 def _build_on_sim(cfg: SystemConfig, runtime: Runtime) -> System:
     if cfg.home is not None and cfg.home != cfg.sim.home:
         raise ConfigError("home: the simulated home is sim.home; set that instead")
-    sim = build_sim(runtime, cfg.sim)
+    adapter = SimAdapter.build(runtime, cfg)
+    sim = adapter.simulation
     # As an operator would on /initialpose: AMCL starts where the robot was put down, unless
     # navigation.start_place is None (global localisation from an unknown pose).
     initial_pose = None if cfg.navigation.start_place is None else sim.robot.true_pose
     navigation = _add_navigation(runtime, cfg, sim.world, initial_pose)
     senses = build_senses(runtime, cfg, sim, partial(SkeletonCamera, sim), lambda: navigation.pose)
-    return _assemble(cfg, runtime, sim, sim.world, navigation, senses)
+    return _assemble(cfg, runtime, lambda: adapter, sim.world, navigation, senses)
 
 
-def _build_on_robot(cfg: SystemConfig, runtime: Runtime) -> System:
+def _build_on_robot(cfg: SystemConfig, runtime: Runtime, adapter: type[RobotAdapter]) -> System:
     """A real robot: its adapters, the home from ``home`` + ``navigation.map``, AMCL from
     ``navigation.start_place``, and perception and activity on its camera."""
     from amiro.system.camera import build_camera_modules
@@ -281,9 +293,10 @@ def _build_on_robot(cfg: SystemConfig, runtime: Runtime) -> System:
     world = World.load(home_path(cfg), cfg.sim.resolution)
     navigation = _add_navigation(runtime, cfg, world, None)
     built = build_camera_modules(runtime, cfg, lambda: navigation.pose)
-    system = _assemble(cfg, runtime, None, world, navigation, Senses(built.people, built.activity))
+    senses = Senses(built.people, built.activity)
+    # The adapter last: it connects to the robot once the rest of the config is sound.
+    system = _assemble(cfg, runtime, lambda: adapter.build(runtime, cfg), world, navigation, senses)
     system.camera_people = built.people
-    system.robot = build_robot(runtime, cfg.robot)  # last: connects once the config is sound
     return system
 
 
@@ -301,7 +314,7 @@ def _add_navigation(
 def _assemble(
     cfg: SystemConfig,
     runtime: Runtime,
-    sim: Simulation | None,
+    make_adapter: Callable[[], RobotAdapter],
     world: World,
     navigation: MoveToNode,
     senses: Senses,
@@ -328,8 +341,7 @@ def _assemble(
     return System(
         cfg,
         runtime,
-        sim,
-        None,  # a real robot's adapters are added last, once everything else is built
+        make_adapter(),
         world,
         navigation,
         layer.engine,

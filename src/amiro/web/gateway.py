@@ -14,6 +14,7 @@ from concurrent.futures import Future
 from typing import Any, TypeVar
 
 from amiro.core import names
+from amiro.core.inbox import Inbox
 from amiro.core.messages import (
     Acknowledgement,
     BehaviorEvent,
@@ -24,7 +25,6 @@ from amiro.core.messages import (
 )
 from amiro.core.node import Node
 from amiro.environment.devices import SimulatedDevicesNode
-from amiro.environment.inbox import Inbox
 from amiro.environment.messages import DeviceState
 from amiro.web.robot import RobotPort
 

@@ -9,7 +9,6 @@ PDDL problem's static facts are made of.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,9 +43,6 @@ class Doorway:
     def centre(self) -> tuple[float, float]:
         return (0.5 * (self.a[0] + self.b[0]), 0.5 * (self.a[1] + self.b[1]))
 
-    def side_in(self, room: str) -> str:
-        return self.sides[self.rooms.index(room)]
-
 
 @dataclass
 class Topology:
@@ -69,14 +65,6 @@ class Topology:
         p, q = self.waypoints[a], self.waypoints[b]
         return math.hypot(p.x - q.x, p.y - q.y)
 
-    def links(self) -> Iterator[tuple[str, str]]:
-        """Ordered pairs of distinct waypoints of the same room: where ``move`` may go."""
-        for names in self._by_room.values():
-            for a in names:
-                for b in names:
-                    if a != b:
-                        yield a, b
-
     def nearest(self, x: float, y: float, room: str) -> str:
         names = self.in_room(room)
         if not names:
@@ -84,10 +72,6 @@ class Topology:
         return min(
             names, key=lambda n: math.hypot(self.waypoints[n].x - x, self.waypoints[n].y - y)
         )
-
-    def signature(self) -> tuple[object, ...]:
-        """Identifies the static part of a planning problem (for caches)."""
-        return (self.name, self.rooms, tuple(sorted(self.waypoints)), tuple(sorted(self.doors)))
 
 
 def topology_from_world(world: World) -> Topology:

@@ -10,8 +10,6 @@ import logging
 import queue
 from collections.abc import Callable
 
-from amiro.core.node import Node
-
 log = logging.getLogger("amiro.inbox")
 
 
@@ -42,18 +40,3 @@ class Inbox:
                 self.failed += 1
                 log.warning("inbox job failed: %r", exc)
         return done
-
-
-class InboxNode(Node):
-    """Drains an :class:`Inbox` every ``period_s`` of runtime clock."""
-
-    def __init__(self, inbox: Inbox, name: str = "inbox", period_s: float = 0.05) -> None:
-        super().__init__(name)
-        self.inbox = inbox
-        self.period_s = period_s
-
-    def on_start(self) -> None:
-        self.create_timer(self.period_s, self._drain)
-
-    def _drain(self) -> None:
-        self.inbox.drain()
