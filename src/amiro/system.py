@@ -48,6 +48,7 @@ from amiro.perception.ports import PeopleFinder
 from amiro.perception.stack import PoseSource, build_people_finder
 from amiro.robot.build import RealRobot, build_robot
 from amiro.robot.config import RobotConfig
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import SimConfig
 from amiro.sim.sensing import HeadCamera
 from amiro.sim.simulator import Simulation, build_sim
@@ -283,8 +284,15 @@ def _add_navigation(
     navigation = runtime.add(
         build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation, initial_pose)
     )
-    runtime.add(PrimitivesNode(speed=min(0.2, cfg.navigation.max_speed)))  # forward / rotate
+    add_motion(runtime, cfg.navigation)
     return navigation
+
+
+def add_motion(runtime: Runtime, cfg: NavigationConfig) -> None:
+    """Beside MoveTo: the forward / rotate primitives, and the velocity multiplexer, the one
+    writer of ``/cmd_vel`` (MoveTo and the primitives publish on its inputs)."""
+    runtime.add(PrimitivesNode(speed=min(0.2, cfg.max_speed)))
+    runtime.add(VelocityMuxNode())
 
 
 def _assemble(

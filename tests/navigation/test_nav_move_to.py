@@ -19,6 +19,7 @@ from amiro.core.runtime import Runtime
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToNode
 from amiro.navigation.stack import GROUND_TRUTH_TOPIC, build_navigation
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
 from amiro.sim.geometry import wrap_angle as wrap
 from amiro.sim.simulator import Simulation, build_sim
@@ -64,6 +65,7 @@ def _rig(sim_cfg: SimConfig | None = None, seed: int = 3) -> Rig:
     sim = build_sim(rt, sim_cfg or SimConfig())
     places = {name: sim.world.place(name) for name in sim.world.home.places}
     nav = rt.add(build_navigation(_map(), places, CFG))
+    rt.add(VelocityMuxNode())  # the one writer of /cmd_vel
     rig = Rig(rt, sim, nav)
     rt.bus.subscribe("/cmd_vel", Twist, lambda m: rig.cmds.append((rig.now(), m)), depth=1000)
     rt.bus.subscribe(GROUND_TRUTH_TOPIC, Pose2D, rig.truth.append, depth=1000)
@@ -244,6 +246,7 @@ def test_a_goal_sent_before_the_first_pose_waits_for_it() -> None:
     sim = build_sim(rt, SimConfig())
     places = {name: sim.world.place(name) for name in sim.world.home.places}
     nav = rt.add(build_navigation(_map(), places, CFG))
+    rt.add(VelocityMuxNode())  # the one writer of /cmd_vel
     rt.start()
     assert nav.pose is None
     handle = rt.bus.send_goal(MOVE_TO_ACTION, MoveToGoal(place="hallway"))

@@ -7,11 +7,11 @@ from typing import Any
 
 import pytest
 
+from amiro.core import names
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.clock import SimClock
 from amiro.core.messages import String
 from amiro.core.runtime import Runtime
-from amiro.navigation.move_to import EMERGENCY_STOP_TOPIC
 from amiro.navigation.poses import between
 from amiro.navigation.primitives import (
     FORWARD_ACTION,
@@ -21,6 +21,7 @@ from amiro.navigation.primitives import (
     PrimitivesNode,
     RotateGoal,
 )
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import PoseSpec, SimConfig
 from amiro.sim.geometry import wrap_angle
 from amiro.sim.simulator import Simulation, build_sim
@@ -33,6 +34,7 @@ def _rig(start: PoseSpec = START) -> tuple[Runtime, Simulation]:
     rt = Runtime(SimClock(), seed=0)
     sim = build_sim(rt, SimConfig(start=start))
     rt.add(PrimitivesNode())
+    rt.add(VelocityMuxNode())
     rt.start()
     rt.spin_for(0.2)  # first odometry and lidar scan
     return rt, sim
@@ -77,7 +79,7 @@ def test_cancel_stops_part_way() -> None:
 
 def test_emergency_stop_holds_the_motion_until_released() -> None:
     rt, sim = _rig()
-    estop = rt.bus.publisher(EMERGENCY_STOP_TOPIC, String)
+    estop = rt.bus.publisher(names.EMERGENCY_STOP, String)
     handle = rt.bus.send_goal(ROTATE_ACTION, RotateGoal(math.pi))
     rt.spin_for(0.5)
     estop.publish(String("true"))

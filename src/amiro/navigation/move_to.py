@@ -11,6 +11,7 @@ import itertools
 import math
 from dataclasses import dataclass
 
+from amiro.core import names
 from amiro.core.bus import ActionServer, GoalHandle
 from amiro.core.messages import (
     Header,
@@ -23,6 +24,7 @@ from amiro.core.messages import (
     Twist,
 )
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.navigation.costmap import Costmap
 from amiro.navigation.dwa import DwaParams, DynamicWindow
 from amiro.navigation.follower import FollowerLimits, PathFollower
@@ -30,8 +32,7 @@ from amiro.navigation.localization import Localizer, OracleLocalizer
 from amiro.navigation.planner import GlobalPlanner
 from amiro.sim.geometry import wrap_angle
 
-MOVE_TO_ACTION = "/amiro/navigation/move_to"
-EMERGENCY_STOP_TOPIC = "/amiro/emergency_stop"
+MOVE_TO_ACTION = names.MOVE_TO
 _BACKOFF_S = 1.5
 
 
@@ -106,12 +107,12 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
 
     def on_start(self) -> None:
         self.active = None
-        self.cmd_pub = self.create_publisher("/cmd_vel", Twist)
+        self.cmd_pub = self.create_publisher(names.CMD_VEL_NAVIGATION, Twist)  # the mux's input
         self.path_pub = self.create_publisher("/amiro/navigation/path", Path)
         self.localizer.attach(self, self._on_pose)
         self.create_subscription("/odom", Odometry, self._on_odom, depth=1)
         self.create_subscription("/scan", LaserScan, self._on_scan, depth=1)
-        self.create_subscription(EMERGENCY_STOP_TOPIC, String, self._on_estop)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
         self.create_action_server(MOVE_TO_ACTION, self)
         self.create_timer(self.period, self._control)
 
@@ -130,9 +131,8 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
             self._replan(self.active)
 
     def _on_estop(self, msg: String) -> None:
-        self.emergency_stop = msg.data.lower() in ("1", "true", "stop", "on")
-        if self.emergency_stop:
-            self.cmd_pub.publish(Twist())
+        """The mux stops the base; here a goal only waits (held still is not "stuck")."""
+        self.emergency_stop = estop_engaged(msg.data)
 
     # --- action server ------------------------------------------------------------------
     def accept(self, goal: MoveToGoal) -> bool:

@@ -17,8 +17,10 @@ from collections.abc import Collection
 from typing import Any
 from urllib.parse import quote
 
+from amiro.core import names
 from amiro.core.messages import Header, JointState, Odometry, Pose2D, SpeechRequest, String, Twist
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.robot import ports
 from amiro.robot.frames import BASE_FRAME, ODOM_FRAME
 from amiro.robot.limits import Planar, VelocityLimiter, clamp_head
@@ -88,7 +90,7 @@ class NaoqiRobotNode(Node):
             self.create_subscription(ports.POSTURE, String, lambda m: self._go_to(m.data))
         if "base" in self.handles:
             self.create_subscription(ports.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
-            self.create_subscription(ports.EMERGENCY_STOP, String, self._on_estop)
+            self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
             self.create_timer(1.0 / self.profile.cmd_rate_hz, self._send_command)
         if "odom" in self.handles:
             self.pub_odom = self.create_publisher(ports.ODOM, Odometry)
@@ -131,8 +133,8 @@ class NaoqiRobotNode(Node):
     def _on_head(self, msg: JointState) -> None:
         targets = clamp_head(self.head, dict(zip(msg.name, msg.position, strict=False)))
         if targets:
-            names = {ports.HEAD_YAW: self.head.yaw_joint, ports.HEAD_PITCH: self.head.pitch_joint}
-            joints = [names[j] for j in targets]
+            joint = {ports.HEAD_YAW: self.head.yaw_joint, ports.HEAD_PITCH: self.head.pitch_joint}
+            joints = [joint[j] for j in targets]
             self.naoqi.call(MOTION, "setAngles", joints, list(targets.values()), self.head.speed)
 
     def _go_to(self, posture: str) -> None:
@@ -143,7 +145,7 @@ class NaoqiRobotNode(Node):
         self._wanted, self._wanted_at = msg, self.now()
 
     def _on_estop(self, msg: String) -> None:
-        self.estop = ports.estop_engaged(msg.data)
+        self.estop = estop_engaged(msg.data)
         if self.estop:
             self.limiter.reset()
             self._sent = Planar()

@@ -21,11 +21,6 @@ HEAD_CMD = "/amiro/head/cmd"  # JointState targets, HeadYaw / HeadPitch
 SAY = "/amiro/say"  # SpeechRequest
 DISPLAY = "/amiro/display"  # String: text, or a URL for a web view
 POSTURE = "/amiro/posture"  # String: a posture name ("Stand", "Crouch")
-EMERGENCY_STOP = "/amiro/emergency_stop"  # String: "stop"/"true"/"on"/"1" engages
+EMERGENCY_STOP = "/amiro/emergency_stop"  # String: amiro.core.safety.estop_engaged reads it
 
 HEAD_YAW, HEAD_PITCH = "HeadYaw", "HeadPitch"
-
-
-def estop_engaged(msg: str) -> bool:
-    """The emergency-stop topic's meaning, as navigation reads it."""
-    return msg.lower() in ("1", "true", "stop", "on")

@@ -15,6 +15,7 @@ from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.core import names
 from amiro.core.messages import (
     CameraInfo,
     Header,
@@ -29,6 +30,7 @@ from amiro.core.messages import (
     Vector3,
 )
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.robot import ports
 from amiro.robot.frames import odometry_in_rep105, scan_in_base
 from amiro.robot.limits import VelocityLimiter, clamp_head
@@ -169,7 +171,7 @@ class Ros2RobotNode(Node):
         self.pub_joints = self.create_publisher(ports.JOINT_STATES, JointState)
         self.pubs_image = {p: self.create_publisher(p, Image) for p in (ports.IMAGE, ports.DEPTH)}
         self.pub_info = self.create_publisher(ports.CAMERA_INFO, CameraInfo)
-        self.create_subscription(ports.EMERGENCY_STOP, String, self._on_estop)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
         if "base" not in self.skip:
             self.create_subscription(ports.CMD_VEL, Twist, self._on_cmd_vel, depth=1)
             self.create_timer(1.0 / self.profile.cmd_rate_hz, self._send_command)
@@ -191,7 +193,7 @@ class Ros2RobotNode(Node):
         self._wanted, self._wanted_at = msg, self.now()
 
     def _on_estop(self, msg: String) -> None:
-        self.estop = ports.estop_engaged(msg.data)
+        self.estop = estop_engaged(msg.data)
         if self.estop and "base" not in self.skip:
             self.limiter.reset()
             self.cmd_pub.publish(ros_twist(self.ros.types, Twist()))

@@ -18,6 +18,14 @@ from pydantic import TypeAdapter, ValidationError
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
 from amiro.navigation.move_to import MOVE_TO_ACTION, MoveToFeedback, MoveToGoal, MoveToResult
+from amiro.navigation.primitives import (
+    FORWARD_ACTION,
+    ROTATE_ACTION,
+    ForwardGoal,
+    PrimitiveFeedback,
+    PrimitiveResult,
+    RotateGoal,
+)
 from amiro.ros2.behaviors import (
     BEHAVIOR_ACTION,
     BehaviorFeedback,
@@ -103,6 +111,12 @@ ACTIONS: dict[str, ActionSpec] = {
             MoveToFeedback,
             MoveToResult,
             lambda reason: MoveToResult(False, reason),
+        ),
+        *(
+            action_spec(
+                name, goal, PrimitiveFeedback, PrimitiveResult, lambda r: PrimitiveResult(False, r)
+            )
+            for name, goal in ((FORWARD_ACTION, ForwardGoal), (ROTATE_ACTION, RotateGoal))
         ),
         action_spec(
             BEHAVIOR_ACTION,

@@ -19,13 +19,6 @@ class Collision:
 
 
 @dataclass(frozen=True, slots=True)
-class EmergencyStop:
-    """Engage (True) or release (False) the base's emergency stop."""
-
-    engaged: bool
-
-
-@dataclass(frozen=True, slots=True)
 class CameraObservation:
     """One resident as the head camera sees them, plus ground truth for oracles.
 
