@@ -54,7 +54,6 @@ class VelocityMuxNode(Node):
         self.check_period_s = check_period_s
         self.locked = False
         self.selected: MuxInput | None = None  # whose twist the base last got
-        self.forwarded = 0
         self._last: dict[str, tuple[float, Twist]] = {}  # input -> when, what it last sent
 
     def on_start(self) -> None:
@@ -86,7 +85,6 @@ class VelocityMuxNode(Node):
 
     def _forward(self, source: MuxInput | None, msg: Twist) -> None:
         self.selected = source
-        self.forwarded += 1
         self.pub.publish(msg)
 
     def _on_estop(self, msg: String) -> None:

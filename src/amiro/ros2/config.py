@@ -49,7 +49,8 @@ DEFAULT_PUBLISH: dict[str, tuple[str, ...]] = {
     "cloud": ("/amiro/notifications", "/amiro/env/sensors"),
 }
 DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
-    "sim": ("/cmd_vel", "/amiro/head/cmd", "/amiro/say"),
+    # an operator's stop over ROS 2 reaches the robot adapter and, on the edge, the mux
+    "sim": ("/cmd_vel", "/amiro/head/cmd", "/amiro/say", "/amiro/emergency_stop"),
     "edge": (
         "/scan",
         "/odom",  # AMCL, the default localisation, needs odometry as well as the scan
@@ -61,6 +62,7 @@ DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
         "/amiro/sim/skeletons",
         "/amiro/speech/heard",
         "/amiro/notifications",
+        "/amiro/emergency_stop",
     ),
     "cloud": ("/amiro/events", "/amiro/notifications/ack", "/amiro/heartbeat", "/amiro/people"),
 }
@@ -76,7 +78,7 @@ ROBOT_EDGE_PUBLISH = (
     "/amiro/heartbeat",
     "/amiro/people",
 )
-ROBOT_EDGE_SUBSCRIBE = ("/amiro/speech/heard", "/amiro/notifications")
+ROBOT_EDGE_SUBSCRIBE = ("/amiro/speech/heard", "/amiro/notifications", "/amiro/emergency_stop")
 
 
 # What a sim process with a rendered camera exports besides its defaults (the robot port's).
