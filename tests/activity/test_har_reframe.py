@@ -13,9 +13,11 @@ from amiro.behavior.task import make_task
 from amiro.core.clock import SimClock
 from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
+from amiro.navigation.config import NavigationConfig
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.skeletons import SkeletonCamera
+from amiro.system import add_motion
 
 PERSON_X = 7.08
 
@@ -63,6 +65,7 @@ def _recognise(
         SkeletonCamera(sim, np.random.default_rng(0)), box_range, complete
     )
     modules = {"activity": recognizer, "navigation": Odometry(sim), "world": sim.world}
+    add_motion(runtime, NavigationConfig())  # the forward action the reframing drives with
     engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules=modules))
     runtime.start()
     params = {"person": "maria", "timeout_s": 20, "max_reframe_m": 2.0}

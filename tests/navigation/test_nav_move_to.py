@@ -22,6 +22,7 @@ from amiro.home.world import default_home_path
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToNode
 from amiro.navigation.stack import build_navigation
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 
@@ -65,6 +66,7 @@ def _rig(sim_cfg: SimConfig | None = None, seed: int = 3) -> Rig:
     sim = build_sim(rt, sim_cfg or SimConfig())
     places = {name: sim.world.place(name) for name in sim.world.home.places}
     nav = rt.add(build_navigation(_map(), places, CFG))
+    rt.add(VelocityMuxNode())  # the one writer of /cmd_vel
     rig = Rig(rt, sim, nav)
     rt.bus.subscribe("/cmd_vel", Twist, lambda m: rig.cmds.append((rig.now(), m)), depth=1000)
     rt.bus.subscribe(names.GROUND_TRUTH, Pose2D, rig.truth.append, depth=1000)
@@ -245,6 +247,7 @@ def test_a_goal_sent_before_the_first_pose_waits_for_it() -> None:
     sim = build_sim(rt, SimConfig())
     places = {name: sim.world.place(name) for name in sim.world.home.places}
     nav = rt.add(build_navigation(_map(), places, CFG))
+    rt.add(VelocityMuxNode())  # the one writer of /cmd_vel
     rt.start()
     assert nav.pose is None
     handle = rt.bus.send_goal(names.MOVE_TO, MoveToGoal(place="hallway"))

@@ -15,6 +15,7 @@ from amiro.core.messages import String
 from amiro.core.runtime import Runtime
 from amiro.navigation.poses import between
 from amiro.navigation.primitives import ForwardGoal, PrimitiveResult, PrimitivesNode, RotateGoal
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import PoseSpec, SimConfig
 from amiro.sim.simulator import Simulation, build_sim
 
@@ -26,6 +27,7 @@ def _rig(start: PoseSpec = START) -> tuple[Runtime, Simulation]:
     rt = Runtime(SimClock(), seed=0)
     sim = build_sim(rt, SimConfig(start=start))
     rt.add(PrimitivesNode())
+    rt.add(VelocityMuxNode())
     rt.start()
     rt.spin_for(0.2)  # first odometry and lidar scan
     return rt, sim
@@ -99,3 +101,16 @@ def test_bad_goals_are_rejected() -> None:
     handle = rt.bus.send_goal(names.ROTATE, RotateGoal(math.nan))
     rt.spin_for(0.1)
     assert handle.status is GoalStatus.REJECTED
+
+
+def test_a_forward_goal_may_ask_for_a_lower_speed_never_a_bad_one() -> None:
+    rt, sim = _rig()
+    speeds: list[float] = []
+    rt.create_timer(0.05, lambda: speeds.append(abs(sim.robot.base.velocity[0])))
+    handle = rt.bus.send_goal(names.FORWARD, ForwardGoal(0.5, speed=0.1))
+    assert _run(rt, handle).reason == "done"
+    assert max(speeds) == pytest.approx(0.1, abs=1e-6)  # the node alone would go at 0.2
+    for speed in (0.0, -0.1, math.nan):
+        assert rt.bus.send_goal(names.FORWARD, ForwardGoal(0.5, speed)).status is (
+            GoalStatus.REJECTED
+        )

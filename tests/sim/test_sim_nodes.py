@@ -6,11 +6,12 @@ import math
 
 import pytest
 
+from amiro.core import names
 from amiro.core.config import ConfigError
-from amiro.core.messages import Header, JointState, LaserScan, Odometry, Pose2D, Twist
+from amiro.core.messages import Header, JointState, LaserScan, Odometry, Pose2D, String, Twist
 from amiro.core.runtime import Runtime
 from amiro.sim.config import SimConfig
-from amiro.sim.messages import Collision, EmergencyStop
+from amiro.sim.messages import Collision
 from amiro.sim.simulator import build_sim
 
 
@@ -57,7 +58,7 @@ def test_cmd_timeout_head_and_emergency_stop() -> None:
     assert sim.robot.head_yaw == pytest.approx(1.0) and sim.robot.head_pitch == pytest.approx(0.3)
     assert joints[-1].name == ("HeadYaw", "HeadPitch")
     assert joints[-1].position == pytest.approx((1.0, 0.3))
-    rt.bus.publish("/amiro/sim/emergency_stop", EmergencyStop(True))
+    rt.bus.publish(names.EMERGENCY_STOP, String("stop"))
     x0 = sim.robot.true_pose.x
     for _ in range(10):
         rt.bus.publish("/cmd_vel", Twist.planar(0.3, 0.0, 0.0))

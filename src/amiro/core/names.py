@@ -18,6 +18,10 @@ IMAGE = "/camera/image_raw"  # Image, rgb8
 DEPTH = "/camera/depth/image_raw"  # Image, 32FC1 metres
 CAMERA_INFO = "/camera/camera_info"  # CameraInfo
 CMD_VEL = "/cmd_vel"  # Twist, base frame: written only by the velocity multiplexer
+# the multiplexer's inputs (Twist), most urgent first: robot.velocity_mux picks one
+CMD_VEL_TELEOP = "/amiro/cmd_vel/teleop"  # an operator's joystick or dashboard
+CMD_VEL_NAVIGATION = "/amiro/cmd_vel/navigation"  # MoveTo
+CMD_VEL_PRIMITIVES = "/amiro/cmd_vel/primitives"  # forward / rotate (RecognizeActivity reframing)
 HEAD_CMD = "/amiro/head/cmd"  # JointState targets, HeadYaw / HeadPitch
 SAY = "/amiro/say"  # SpeechRequest
 DISPLAY = "/amiro/display"  # String: text, or a URL for a web view

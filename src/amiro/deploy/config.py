@@ -50,7 +50,8 @@ DEFAULT_PUBLISH: dict[str, tuple[str, ...]] = {
     "cloud": (names.NOTIFICATIONS, names.SENSORS),
 }
 DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
-    "sim": (names.CMD_VEL, names.HEAD_CMD, names.SAY),
+    # an operator's stop over ROS 2 reaches the robot adapter and, on the edge, the mux
+    "sim": (names.CMD_VEL, names.HEAD_CMD, names.SAY, names.EMERGENCY_STOP),
     "edge": (
         names.SCAN,
         names.ODOM,  # AMCL, the default localisation, needs odometry as well as the scan
@@ -62,6 +63,7 @@ DEFAULT_SUBSCRIBE: dict[str, tuple[str, ...]] = {
         names.SKELETONS,
         names.HEARD,
         names.NOTIFICATIONS,
+        names.EMERGENCY_STOP,
     ),
     "cloud": (names.EVENTS, names.ACK, names.HEARTBEAT, names.PEOPLE),
 }
@@ -77,7 +79,7 @@ ROBOT_EDGE_PUBLISH = (
     names.HEARTBEAT,
     names.PEOPLE,
 )
-ROBOT_EDGE_SUBSCRIBE = (names.HEARD, names.NOTIFICATIONS)
+ROBOT_EDGE_SUBSCRIBE = (names.HEARD, names.NOTIFICATIONS, names.EMERGENCY_STOP)
 
 
 # What a sim process with a rendered camera exports besides its defaults (the robot port's).

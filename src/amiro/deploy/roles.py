@@ -43,6 +43,7 @@ from amiro.system import (
     BehaviorLayer,
     Senses,
     SystemConfig,
+    add_motion,
     build_behavior_layer,
     build_senses,
     home_path,
@@ -73,9 +74,13 @@ class RoleParts:
 
 
 def add_navigation(runtime: Runtime, cfg: SystemConfig, world: World) -> MoveToNode:
+    """MoveTo, the primitives and the velocity mux (so ``/cmd_vel`` is written where
+    navigation runs), and map -> odom on /tf."""
     places = {name: world.place(name) for name in world.home.places}
     runtime.add(MapOdomNode(pose_topic(cfg)))  # map -> odom on /tf, where localisation runs
-    return runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    navigation = runtime.add(build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation))
+    add_motion(runtime, cfg.navigation)
+    return navigation
 
 
 def build_sim_role(

@@ -30,6 +30,7 @@ from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToResult
 from amiro.navigation.slam import SlamParams
 from amiro.navigation.slam_node import SlamNode
 from amiro.navigation.stack import build_navigation
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.config import BaseSection, ObstacleSpec, SimConfig
 from amiro.sim.simulator import build_sim
 
@@ -146,6 +147,7 @@ def run_once(exp: Experiment, seed: int, max_speed: float, timeout_s: float = 24
     places = {name: world.place(name) for name in world.home.places}
     cfg = NavigationConfig(max_speed=max_speed)
     rt.add(build_navigation(grid, places, cfg, initial_pose=start))
+    rt.add(VelocityMuxNode())  # MoveTo's commands on to /cmd_vel
     slam = rt.add(
         SlamNode(
             start, SlamParams(resolution=0.025, levels=4, size_m=2.0 * max(world.home.size) + 4.0)

@@ -25,6 +25,7 @@ from amiro.core.messages import (
     Twist,
 )
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.navigation.costmap import Costmap
 from amiro.navigation.dwa import DwaParams, DynamicWindow
 from amiro.navigation.follower import FollowerLimits, PathFollower
@@ -105,7 +106,7 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
 
     def on_start(self) -> None:
         self.active = None
-        self.cmd_pub = self.create_publisher(names.CMD_VEL, Twist)
+        self.cmd_pub = self.create_publisher(names.CMD_VEL_NAVIGATION, Twist)  # the mux's input
         self.path_pub = self.create_publisher(names.PATH, Path)
         self.localizer.attach(self, self._on_pose)
         self.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
@@ -129,9 +130,8 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
             self._replan(self.active)
 
     def _on_estop(self, msg: String) -> None:
-        self.emergency_stop = msg.data.lower() in ("1", "true", "stop", "on")
-        if self.emergency_stop:
-            self.cmd_pub.publish(Twist())
+        """The mux stops the base; here a goal only waits (held still is not "stuck")."""
+        self.emergency_stop = estop_engaged(msg.data)
 
     # --- action server ------------------------------------------------------------------
     def accept(self, goal: MoveToGoal) -> bool:

@@ -19,12 +19,14 @@ from amiro.core.bus import ActionServer, GoalHandle
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import LaserScan, Odometry, Pose2D, String, Twist
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.navigation.poses import between
 
 
 @dataclass(frozen=True)
 class ForwardGoal:
     distance: float  # metres along the heading at the start; negative: backwards
+    speed: float | None = None  # m/s, at most the node's speed; None: the node's speed
 
 
 @dataclass(frozen=True)
@@ -54,10 +56,15 @@ class _Motion:
     target: float
     start: Pose2D
     last: Pose2D
+    limit: float  # m/s or rad/s
     turned: float = 0.0
 
     def achieved(self) -> float:
         return self.turned if self.rotate else between(self.start, self.last).x
+
+
+def _finite(value: object) -> bool:
+    return isinstance(value, int | float) and math.isfinite(value)
 
 
 class _Server(ActionServer[Any, PrimitiveFeedback, PrimitiveResult]):
@@ -67,7 +74,8 @@ class _Server(ActionServer[Any, PrimitiveFeedback, PrimitiveResult]):
 
     def accept(self, goal: Any) -> bool:
         value = goal.angle if self.rotate else goal.distance
-        return isinstance(value, int | float) and math.isfinite(value)
+        speed = None if self.rotate else goal.speed
+        return _finite(value) and (speed is None or (_finite(speed) and speed > 0.0))
 
     def execute(self, handle: Handle) -> None:
         self.node.begin(handle, self.rotate)
@@ -102,7 +110,7 @@ class PrimitivesNode(Node):
         self.active: _Motion | None = None
 
     def on_start(self) -> None:
-        self.cmd_pub = self.create_publisher(names.CMD_VEL, Twist)
+        self.cmd_pub = self.create_publisher(names.CMD_VEL_PRIMITIVES, Twist)  # the mux's input
         self.create_subscription(names.ODOM, Odometry, self._on_odom, depth=1)
         self.create_subscription(names.SCAN, LaserScan, self._on_scan, depth=1)
         self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop, depth=10)
@@ -117,9 +125,8 @@ class PrimitivesNode(Node):
         self.scan = scan
 
     def _on_estop(self, msg: String) -> None:
-        self.emergency_stop = msg.data.lower() in ("1", "true", "stop", "on")
-        if self.emergency_stop:
-            self.cmd_pub.publish(Twist())
+        """The mux stops the base; here a motion only waits for the release."""
+        self.emergency_stop = estop_engaged(msg.data)
 
     def begin(self, handle: Handle, rotate: bool) -> None:
         if self.active is not None:
@@ -127,8 +134,10 @@ class PrimitivesNode(Node):
         if self.odom is None:
             handle.abort(PrimitiveResult(False, "no_odometry"))
             return
-        target = float(handle.goal.angle if rotate else handle.goal.distance)
-        self.active = _Motion(handle, rotate, target, self.odom, self.odom)
+        goal = handle.goal
+        target = float(goal.angle if rotate else goal.distance)
+        limit = self.turn_rate if rotate else min(self.speed, goal.speed or self.speed)
+        self.active = _Motion(handle, rotate, target, self.odom, self.odom, limit)
 
     def result_for(self, handle: Handle, success: bool, reason: str) -> PrimitiveResult:
         active = self.active
@@ -163,7 +172,7 @@ class PrimitivesNode(Node):
         if not motion.rotate and self._blocked(backwards=remaining < 0):
             self.end(motion.handle, False, "blocked")
             return
-        limit = self.turn_rate if motion.rotate else self.speed
+        limit = motion.limit
         # slow down over the last stretch (about 2 control periods of travel per unit)
         value = math.copysign(min(limit, max(0.05 * limit, 2.0 * abs(remaining))), remaining)
         self.cmd_pub.publish(

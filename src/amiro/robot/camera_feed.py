@@ -1,7 +1,7 @@
 """The robot's RGB-D camera as one frame at a time: the latest RGB image, the depth image
 nearest to it in time, the intrinsics and the head joints when it was taken.
 
-Every robot adapter publishes the robot port's camera topics (:mod:`amiro.robot.ports`):
+Every robot adapter publishes the robot port's camera topics (:mod:`amiro.core.names`):
 ``rgb8`` images, ``32FC1`` depth in metres (``16UC1`` millimetres are converted), the
 camera info and the head's joint states.  Perception and activity both read frames from
 one feed, so the images are converted once.

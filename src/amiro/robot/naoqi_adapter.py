@@ -20,7 +20,7 @@ from urllib.parse import quote
 from amiro.core import names
 from amiro.core.messages import Header, JointState, Odometry, Pose2D, SpeechRequest, String, Twist
 from amiro.core.node import Node
-from amiro.robot import ports
+from amiro.core.safety import estop_engaged
 from amiro.robot.frames import BASE_FRAME, ODOM_FRAME
 from amiro.robot.limits import Planar, VelocityLimiter, clamp_head
 from amiro.robot.naoqi_session import NaoqiSession
@@ -147,7 +147,7 @@ class NaoqiRobotNode(Node):
         self._wanted, self._wanted_at = msg, self.now()
 
     def _on_estop(self, msg: String) -> None:
-        self.estop = ports.estop_engaged(msg.data)
+        self.estop = estop_engaged(msg.data)
         if self.estop:
             self.limiter.reset()
             self._sent = Planar()

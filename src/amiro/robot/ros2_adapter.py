@@ -30,7 +30,7 @@ from amiro.core.messages import (
     Vector3,
 )
 from amiro.core.node import Node
-from amiro.robot import ports
+from amiro.core.safety import estop_engaged
 from amiro.robot.frames import odometry_in_rep105, scan_in_base
 from amiro.robot.limits import VelocityLimiter, clamp_head
 from amiro.robot.profile import RobotProfile
@@ -194,7 +194,7 @@ class Ros2RobotNode(Node):
         self._wanted, self._wanted_at = msg, self.now()
 
     def _on_estop(self, msg: String) -> None:
-        self.estop = ports.estop_engaged(msg.data)
+        self.estop = estop_engaged(msg.data)
         if self.estop and "base" not in self.skip:
             self.limiter.reset()
             self.cmd_pub.publish(ros_twist(self.ros.types, Twist()))

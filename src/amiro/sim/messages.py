@@ -14,10 +14,3 @@ class Collision:
     y: float
     theta: float
     count: int
-
-
-@dataclass(frozen=True, slots=True)
-class EmergencyStop:
-    """Engage (True) or release (False) the base's emergency stop."""
-
-    engaged: bool

@@ -4,7 +4,8 @@ Topics (all in SI units, REP-105 frames):
 
 ``SimRobotNode``
     subscribes ``/cmd_vel`` (Twist, robot frame), ``/amiro/head/cmd`` (JointState with
-    HeadYaw/HeadPitch targets), ``/amiro/sim/emergency_stop`` (EmergencyStop);
+    HeadYaw/HeadPitch targets), ``/amiro/emergency_stop`` (String, as every robot adapter:
+    it stops the base at once, whatever ``/cmd_vel`` says, until released);
     publishes ``/odom`` (Odometry, odom -> base_footprint, drifting) and ``/tf``
     (TransformStamped) at the physics rate, ``/scan`` (LaserScan, ``laser``) at the lidar
     rate, ``/joint_states`` (JointState), ``/amiro/sim/ground_truth`` (Pose2D, map frame)
@@ -35,12 +36,14 @@ from amiro.core.messages import (
     Pose2D,
     SpeechHeard,
     SpeechRequest,
+    String,
     TransformStamped,
     Twist,
     Vector3,
 )
 from amiro.core.node import Node
 from amiro.core.runtime import Runtime
+from amiro.core.safety import estop_engaged
 from amiro.dialogue.output import speaking_time
 from amiro.home.world import World, default_home_path
 from amiro.robot.camera import Camera, CameraObservation, CameraParams
@@ -50,7 +53,7 @@ from amiro.sim.camera import Head, observe_residents
 from amiro.sim.config import ResidentSpec, SimConfig
 from amiro.sim.door_help import DOOR_OPENING_S, OPEN_DOOR_REQUEST, open_nearest_door
 from amiro.sim.lidar import Lidar, LidarParams
-from amiro.sim.messages import Collision, EmergencyStop
+from amiro.sim.messages import Collision
 from amiro.sim.residents import DRINK_DURATION, Reply, Resident, ScriptedReply
 
 HEAD_JOINTS = (names.HEAD_YAW, names.HEAD_PITCH)
@@ -110,7 +113,7 @@ class SimRobotNode(Node):
         self._last_cmd = -math.inf
         self.create_subscription(names.CMD_VEL, Twist, self._on_cmd_vel)
         self.create_subscription(names.HEAD_CMD, JointState, self._on_head_cmd)
-        self.create_subscription("/amiro/sim/emergency_stop", EmergencyStop, self._on_estop)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop)
         self.pub_odom = self.create_publisher(names.ODOM, Odometry)
         self.pub_tf = self.create_publisher(names.TF, TransformStamped)
         self.pub_scan = self.create_publisher(names.SCAN, LaserScan)
@@ -129,9 +132,9 @@ class SimRobotNode(Node):
         targets = dict(zip(msg.name, msg.position, strict=False))
         self.head.command(targets.get(names.HEAD_YAW), targets.get(names.HEAD_PITCH))
 
-    def _on_estop(self, msg: EmergencyStop) -> None:
-        self.estop = msg.engaged
-        if msg.engaged:
+    def _on_estop(self, msg: String) -> None:
+        self.estop = estop_engaged(msg.data)
+        if self.estop:
             self.base.stop()
 
     # --- timers -------------------------------------------------------------------------

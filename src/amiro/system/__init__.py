@@ -51,6 +51,7 @@ from amiro.robot.adapter import RobotAdapter, adapter_type
 from amiro.robot.build import RealRobot
 from amiro.robot.camera import HeadCamera
 from amiro.robot.config import RobotConfig
+from amiro.robot.velocity_mux import VelocityMuxNode
 from amiro.sim.adapter import SimAdapter
 from amiro.sim.config import SimConfig
 from amiro.sim.simulator import Simulation
@@ -307,8 +308,15 @@ def _add_navigation(
     navigation = runtime.add(
         build_navigation(load_map(nav_map_path(cfg)), places, cfg.navigation, initial_pose)
     )
-    runtime.add(PrimitivesNode(speed=min(0.2, cfg.navigation.max_speed)))  # forward / rotate
+    add_motion(runtime, cfg.navigation)
     return navigation
+
+
+def add_motion(runtime: Runtime, cfg: NavigationConfig) -> None:
+    """Beside MoveTo: the forward / rotate primitives, and the velocity multiplexer, the one
+    writer of ``/cmd_vel`` (MoveTo and the primitives publish on its inputs)."""
+    runtime.add(PrimitivesNode(speed=min(0.2, cfg.max_speed)))
+    runtime.add(VelocityMuxNode())
 
 
 def _assemble(

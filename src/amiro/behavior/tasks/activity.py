@@ -4,16 +4,21 @@ As section 5 of the paper proposes, the robot frames the person the way the mode
 training data did: it drives the base backwards (box too big or cut by the image edge) or
 forwards (box too small) until the person's box fills the trained share of the image, and
 it gives up early, for a spoken confirmation, when the skeleton stays too incomplete.
+The base moves through navigation's forward action (``names.FORWARD``), never on
+``/cmd_vel`` itself, so the velocity multiplexer and its emergency stop govern it.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.behavior.task import Task, TaskContext, TaskStatus, log
 from amiro.behavior.tasks.gaze import look_at
 from amiro.core import names
-from amiro.core.messages import Point, Twist
+from amiro.core.bus import GoalHandle
+from amiro.core.messages import Point
+from amiro.navigation.primitives import ForwardGoal
 
 
 class RecognizeActivity(Task):
@@ -22,7 +27,7 @@ class RecognizeActivity(Task):
     ``look_at`` (a map point: the head turns to it, e.g. ``$person_position``),
     ``incomplete_timeout_s`` (give up this long without a usable skeleton, default 10),
     ``reframe`` (move the base to the trained framing, default true), ``reframe_speed``
-    (m/s, default 0.15), ``max_reframe_m`` (default 1.0).
+    (m/s, default 0.15, at most the forward action's speed), ``max_reframe_m`` (default 1.0).
     Fails with ``skeleton_incomplete`` when the skeleton was never usable, else
     ``not_recognised``.  ``detail["reframed_m"]``: how far the base went (odometry)."""
 
@@ -45,10 +50,16 @@ class RecognizeActivity(Task):
         self.complete_seen = False
         self.labels: dict[str, int] = {}
         self.direction = 0  # +1 forwards, -1 backwards, 0 still
+        self.motion: GoalHandle[ForwardGoal, Any, Any] | None = None  # the forward goal
         self.commanded = 0.0  # m of reframing asked for so far (the budget counts this)
         self.travelled = 0.0  # m the base went, from odometry (0 when blocked)
         self.last_tick = ctx.now()
         self.target = p.get("look_at") if isinstance(p.get("look_at"), Point) else None
+        if self.reframe and not ctx.bus.has_action(names.FORWARD):
+            log.warning(
+                "%s: no %s action here: watching without reframing", self.type_name, names.FORWARD
+            )
+            self.reframe = False
         if self.target is not None:
             look_at(ctx, self.target)
 
@@ -71,8 +82,8 @@ class RecognizeActivity(Task):
                 }
                 ctx.event("activity_recognised", activity=self.activity, person=self.person)
                 return TaskStatus.SUCCESS
-            self.direction = self._framing_direction(
-                ctx, reading.box_height_fraction, reading.clipped
+            self._steer(
+                ctx, self._framing_direction(ctx, reading.box_height_fraction, reading.clipped)
             )
         gave_up = not self.complete_seen and now >= self.incomplete_deadline
         if now >= self.deadline or gave_up:
@@ -108,6 +119,17 @@ class RecognizeActivity(Task):
         y = pose.y + direction * look * math.sin(pose.theta)
         return bool(world.is_free(x, y, 0.3))
 
+    def _steer(self, ctx: TaskContext, direction: int) -> None:
+        """Keep the running forward goal, or end it and send one the new way (for what is
+        left of the budget: the goal ends by itself at the budget on odometry)."""
+        if direction == self.direction:
+            return
+        self._stop(ctx)
+        if direction != 0:
+            goal = ForwardGoal(direction * (self.budget - self.commanded), self.speed)
+            self.motion = ctx.bus.send_goal(names.FORWARD, goal)
+            self.direction = direction
+
     def _drive(self, ctx: TaskContext, now: float) -> None:
         dt, self.last_tick = now - self.last_tick, now
         # the navigation module's odometry velocity (vx, vy, wz): what the wheels did
@@ -115,15 +137,18 @@ class RecognizeActivity(Task):
         self.travelled += abs(float(velocity[0])) * dt
         if self.direction == 0:
             return
+        if self.motion is None or self.motion.done:  # ended (blocked, rejected): still
+            self.direction, self.motion = 0, None
+            return
         self.commanded += self.speed * dt
         if self.commanded >= self.budget:
             self._stop(ctx)
             return
-        ctx.bus.publish(names.CMD_VEL, Twist.planar(self.direction * self.speed, 0.0, 0.0))
         if self.target is not None:
             look_at(ctx, self.target)
 
     def _stop(self, ctx: TaskContext) -> None:
-        if self.direction != 0:
-            ctx.bus.publish(names.CMD_VEL, Twist.planar(0.0, 0.0, 0.0))
+        if self.motion is not None:
+            self.motion.cancel()  # the primitive stops the base at once
+        self.motion = None
         self.direction = 0
