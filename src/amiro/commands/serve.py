@@ -26,6 +26,7 @@ def apply_flags(cfg: ServeConfig, args: argparse.Namespace) -> ServeConfig:
     from amiro.core.config import parse
     from amiro.environment.config import EnvironmentConfig
     from amiro.environment.mqtt_bridge import MqttConfig, parse_url
+    from amiro.web.served import ServeConfig
 
     env = cfg.system.environment
     if args.mqtt is not None:
