@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from amiro.core import registry
 from amiro.core.config import ConfigError
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
@@ -23,7 +24,14 @@ from amiro.navigation.localization import (
 )
 from amiro.navigation.move_to import MoveToNode
 
-__all__ = ["GROUND_TRUTH_TOPIC", "build_navigation", "costmap_from_map", "make_localizer"]
+__all__ = [
+    "GROUND_TRUTH_TOPIC",
+    "amcl_localizer",
+    "build_navigation",
+    "costmap_from_map",
+    "make_localizer",
+    "oracle_localizer",
+]
 
 
 def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
@@ -35,16 +43,36 @@ def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
     return Costmap(blocked, frame, cfg.robot_radius, cfg.safety_margin)
 
 
+def amcl_localizer(
+    grid: GridMap,
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> Localizer:
+    params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
+    return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
+
+
+def oracle_localizer(
+    grid: GridMap,
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> Localizer:
+    return OracleLocalizer(GROUND_TRUTH_TOPIC)
+
+
 def make_localizer(
     grid: GridMap,
     cfg: NavigationConfig,
     initial_pose: Pose2D | None = None,
     rng: np.random.Generator | None = None,
 ) -> Localizer:
-    if cfg.localization == "oracle":
-        return OracleLocalizer(GROUND_TRUTH_TOPIC)
-    params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
-    return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
+    """The localiser ``cfg.localization`` names (:mod:`amiro.navigation.backends`)."""
+    localizer: Localizer = registry.create(
+        "localization", cfg.localization, grid, cfg, initial_pose, rng
+    )
+    return localizer
 
 
 def build_navigation(
