@@ -88,8 +88,11 @@ def build_camera_modules(
     feed = runtime.add(CameraFeed(c.yaw, c.pitch, c.head_joints, c.max_skew_s))
     inputs = PerceptionInputs(p, runtime.rng, localization, feed=feed)
     people = registry.create("perception", p.backend, inputs)
-    if not isinstance(people, CameraPeopleFinder):  # the pose model shares its boxes
-        raise ConfigError(f"perception.backend: {p.backend} is no camera people finder")
+    if not isinstance(people, CameraPeopleFinder):  # the pose model shares its tracks
+        raise ConfigError(
+            f"perception.backend: {p.backend} gave no CameraPeopleFinder, which a robot's "
+            "camera needs (activity's pose model shares its tracks)"
+        )
     camera = CameraSkeletons(runtime, feed, people.locate, people.place)
     activity = create_recognizer(ActivityInputs(cfg.activity, runtime.rng, camera=camera))
     return CameraModules(feed, people, activity)
