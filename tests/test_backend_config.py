@@ -71,6 +71,14 @@ def test_an_unknown_backend_is_one_line_naming_the_field_and_the_choices(
     assert err == f"amiro: error: {info.value}"
 
 
+@pytest.mark.parametrize(
+    "kind", ["perception", "faces", "detector", "localization", "activity", "asr", "tts", "nlu"]
+)
+def test_every_shipped_backend_resolves_to_a_factory(kind: str) -> None:
+    for name in registry.names(kind):
+        assert callable(registry.resolve(kind, name)), f"{kind} {name}"
+
+
 PLUGIN_FINDER = '''
 from amiro.core.messages import Point
 from amiro.perception.ports import SeenPerson
