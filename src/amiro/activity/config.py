@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field
 
+from amiro.activity import backends as _backends  # noqa: F401 - registers the names
 from amiro.core.config import Section
+from amiro.core.registry import backend_name
 
 
 class PoseSection(Section):
@@ -23,7 +25,7 @@ class PoseSection(Section):
 
 
 class ActivityConfig(Section):
-    backend: Literal["onnx", "oracle", "camera-onnx"] = Field(
+    backend: Annotated[str, backend_name("activity")] = Field(
         default="onnx",
         description="onnx: the model on simulated skeletons; oracle: ground truth; "
         "camera-onnx: the model on skeletons a pose model finds in the robot's camera",

@@ -1,49 +1,102 @@
-"""Build the configured activity recogniser on the robot's head camera and skeleton stream.
-
-Both come from the in-process simulator or from a feed of its bridged topics, so the
-embedded system and a deployment's edge run the same recogniser.
+"""Build the configured activity recogniser: on the robot's head camera and skeleton stream
+(the in-process simulator or a feed of its bridged topics, so the embedded system and a
+deployment's edge run the same recogniser), or on a real robot's camera through a pose
+model.  Backends are looked up by name in the registry (:mod:`amiro.activity.backends`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import TYPE_CHECKING, TypeAlias
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from amiro.activity.config import ActivityConfig
 from amiro.activity.ports import ActivityRecognizer
 from amiro.core import registry
+from amiro.core.config import ConfigError
 from amiro.robot.camera import HeadCamera
 
-if TYPE_CHECKING:  # the recogniser loads onnxruntime: only when that backend is chosen
+if TYPE_CHECKING:  # these load onnxruntime: only when their backend is chosen
+    from amiro.activity.camera_skeletons import BoxPlacer, PersonLocator
     from amiro.activity.recognizer import SkeletonSource
-
-registry.register("activity", "oracle", "amiro.activity.stack:oracle_recognizer")
-registry.register("activity", "onnx", "amiro.activity.stack:onnx_recognizer")
-
-Factory: TypeAlias = (
-    "Callable[[HeadCamera, SkeletonSource, np.random.Generator, ActivityConfig], "
-    "ActivityRecognizer]"
-)
+    from amiro.core.runtime import Runtime
+    from amiro.robot.camera_feed import CameraFeed
 
 
-def oracle_recognizer(
-    camera: HeadCamera, skeletons: SkeletonSource, rng: np.random.Generator, cfg: ActivityConfig
-) -> ActivityRecognizer:
-    from amiro.sim.activity_oracle import OracleActivityRecognizer
+@dataclass(frozen=True)
+class CameraSkeletons:
+    """A real robot's camera for a pose model: the runtime its skeleton source joins, the
+    feed, and the people finder's ``locate``/``place``, so skeletons take the tracks' names."""
 
-    return OracleActivityRecognizer(camera, rng, cfg.accuracy)
+    runtime: Runtime
+    feed: CameraFeed
+    locate: PersonLocator
+    place: BoxPlacer
 
 
-def onnx_recognizer(
-    camera: HeadCamera, skeletons: SkeletonSource, rng: np.random.Generator, cfg: ActivityConfig
-) -> ActivityRecognizer:
+@dataclass(frozen=True)
+class ActivityInputs:
+    """What a recogniser is built on: the simulator's ``head`` camera and ``skeletons``
+    stream, or a real robot's ``camera``; the others are None."""
+
+    cfg: ActivityConfig
+    rng: np.random.Generator
+    head: HeadCamera | None = None
+    skeletons: SkeletonSource | None = None
+    camera: CameraSkeletons | None = None
+
+    def simulated(self) -> tuple[HeadCamera, SkeletonSource]:
+        """The simulator's head camera and skeletons, or the error a real robot's config gets."""
+        if self.head is None or self.skeletons is None:
+            raise ConfigError(
+                f"activity.backend: {self.cfg.backend} reads the simulator; a real robot needs "
+                "camera-onnx (with activity.pose.model)"
+            )
+        return self.head, self.skeletons
+
+
+def onnx_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
     from amiro.activity.onnx_model import ActivityModel
     from amiro.activity.recognizer import SkeletonActivityRecognizer
 
+    _, skeletons = inputs.simulated()
+    cfg = inputs.cfg
     return SkeletonActivityRecognizer(
         skeletons, ActivityModel(cfg.model), cfg.window_frames, cfg.min_confidence, cfg.min_visible
+    )
+
+
+def camera_onnx_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
+    """The activity model on skeletons the configured pose model finds in the camera."""
+    from amiro.activity.camera_skeletons import CameraSkeletonSource
+    from amiro.activity.onnx_model import ActivityModel
+    from amiro.activity.pose import PoseOnnxEstimator
+    from amiro.activity.recognizer import SkeletonActivityRecognizer
+
+    cfg, camera = inputs.cfg, inputs.camera
+    if camera is None:
+        raise ConfigError(
+            "activity.backend: camera-onnx reads a real robot's camera (robot.adapter: ros2); "
+            "on the simulator use onnx"
+        )
+    pose = cfg.pose
+    if pose.model is None:
+        raise ConfigError("activity.pose.model: camera-onnx needs a pose model (ONNX file)")
+    model = ActivityModel(cfg.model)
+    estimator = PoseOnnxEstimator(pose.model, pose.keypoints, pose.min_score, pose.nms_iou)
+    source = camera.runtime.add(
+        CameraSkeletonSource(
+            camera.feed,
+            estimator,
+            model.info.fps,  # the rate the activity model was trained at
+            pose.min_keypoint,
+            locate=camera.locate,
+            place=camera.place,
+        )
+    )
+    return SkeletonActivityRecognizer(
+        source, model, cfg.window_frames, cfg.min_confidence, cfg.min_visible
     )
 
 
@@ -52,5 +105,9 @@ def build_activity_recognizer(
 ) -> ActivityRecognizer:
     """The backend ``cfg.backend`` names ("onnx": the shipped model on the residents'
     skeleton streams; "oracle": the camera's ground truth with errors)."""
-    factory: Factory = registry.resolve("activity", cfg.backend)
-    return factory(camera, skeletons, rng, cfg)
+    return create_recognizer(ActivityInputs(cfg, rng, camera, skeletons))
+
+
+def create_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
+    recognizer: ActivityRecognizer = registry.create("activity", inputs.cfg.backend, inputs)
+    return recognizer

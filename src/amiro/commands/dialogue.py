@@ -11,8 +11,6 @@ from amiro.commands.support import add_command, add_group, emit_report
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
 
-ASR_BACKENDS = ("pocketsphinx", "vosk", "google")
-
 
 def register(sub: Subcommands) -> None:
     nlu = add_group(sub, "nlu", "natural-language understanding (en, ro, fr)", dest="nlu_command")
@@ -30,7 +28,11 @@ def register(sub: Subcommands) -> None:
     )
     aev.add_argument("dir", type=Path, help="WAV files named by their transcript (or .txt)")
     aev.add_argument("--lang", default="en", help="language of the recordings (default en)")
-    aev.add_argument("--backend", default="pocketsphinx", help="pocketsphinx, vosk or google")
+    aev.add_argument(
+        "--backend",
+        default="pocketsphinx",
+        help="pocketsphinx (default), vosk, google, or a plugin's registered asr backend",
+    )
     aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
     aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
     aev.add_argument(
@@ -93,6 +95,7 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
 
 
 def _evaluate_asr(args: argparse.Namespace) -> int:
+    from amiro.core import registry
     from amiro.core.config import ConfigError
     from amiro.dialogue.asr_eval import (
         accuracy_report,
@@ -105,8 +108,7 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
     from amiro.dialogue.stack import make_recognizer
     from amiro.dialogue.understanding import Nlu
 
-    if args.backend not in ASR_BACKENDS:
-        raise ConfigError(f"unknown asr backend '{args.backend}' ({', '.join(ASR_BACKENDS)})")
+    registry.resolve("asr", args.backend)  # an unknown name: one line with the choices
     defaults = AsrConfig()
     reject_below = args.reject_below
     if reject_below is None:

@@ -6,7 +6,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
-from amiro.core.registry import register
 from amiro.dialogue.audio import Audio
 
 # pocketsphinx grammar confidences are 0.5 at the limits tuned in asr_confidence.  Replies
@@ -15,10 +14,6 @@ from amiro.dialogue.audio import Audio
 # (measured trade-off in docs/dialogue.md).
 DEFAULT_REJECT_BELOW = 0.5
 DEFAULT_LISTEN_REJECT_BELOW = 0.0
-
-register("asr", "pocketsphinx", "amiro.dialogue.asr_pocketsphinx:PocketsphinxRecognizer")
-register("asr", "vosk", "amiro.dialogue.asr_extras:VoskRecognizer")
-register("asr", "google", "amiro.dialogue.asr_extras:GoogleRecognizer")
 
 
 @dataclass(frozen=True)

@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.asr import Transcript
 from amiro.dialogue.audio import ASR_RATE, Audio, resample
+
+if TYPE_CHECKING:
+    from amiro.dialogue.config import AsrConfig
 
 
 class VoskRecognizer:
@@ -59,3 +62,11 @@ class GoogleRecognizer:
         if not best:
             return Transcript("", 0.0)
         return Transcript(" ".join(a.transcript for a in best), float(best[0].confidence))
+
+
+def vosk_recognizer(cfg: AsrConfig, grammar: str, lang: str) -> VoskRecognizer:
+    return VoskRecognizer(cfg.vosk_model)
+
+
+def google_recognizer(cfg: AsrConfig, grammar: str, lang: str) -> GoogleRecognizer:
+    return GoogleRecognizer(lang)

@@ -6,7 +6,7 @@ model is kept for comparison (``grammar="none"``).  Grammar results carry the co
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from pocketsphinx import Decoder  # type: ignore[import-untyped,import-not-found,unused-ignore]
@@ -17,6 +17,9 @@ from amiro.dialogue.asr_confidence import Segment, grammar_fit
 from amiro.dialogue.audio import ASR_RATE, Audio, add_noise_floor, resample
 from amiro.dialogue.grammar import ANSWER_INTENTS, jsgf, shipped_hints
 from amiro.dialogue.training_data import shipped_training_data
+
+if TYPE_CHECKING:
+    from amiro.dialogue.config import AsrConfig
 
 GRAMMARS = ("nlu", "answers", "none")
 PHONE_LOOP = "phone_loop"
@@ -78,3 +81,7 @@ class PocketsphinxRecognizer:
             for s in self.decoder.seg() or ()
         ]
         return self.decoder.hyp(), path
+
+
+def pocketsphinx_recognizer(cfg: AsrConfig, grammar: str, lang: str) -> PocketsphinxRecognizer:
+    return PocketsphinxRecognizer(grammar, lang)

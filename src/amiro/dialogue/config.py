@@ -3,18 +3,20 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field
 
 from amiro.core.config import Section
+from amiro.core.registry import backend_name
+from amiro.dialogue import backends as _backends  # noqa: F401 - registers the names
 from amiro.dialogue.asr import DEFAULT_LISTEN_REJECT_BELOW, DEFAULT_REJECT_BELOW
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD
 from amiro.dialogue.profiles import SpeakerProfile
 
 
 class TtsConfig(Section):
-    backend: Literal["espeak", "piper", "google"] = "espeak"
+    backend: Annotated[str, backend_name("tts")] = "espeak"
     output: Literal["none", "wav", "speaker"] = Field(
         default="none", description="none: the robot (or simulator) voices /amiro/say itself"
     )
@@ -23,7 +25,7 @@ class TtsConfig(Section):
 
 
 class AsrConfig(Section):
-    backend: Literal["pocketsphinx", "vosk", "google"] = "pocketsphinx"
+    backend: Annotated[str, backend_name("asr")] = "pocketsphinx"
     grammar: Literal["nlu", "answers", "none"] = Field(
         default="nlu",
         description="pocketsphinx search: JSGF from the NLU data, yes/no/later, or LM",
@@ -48,7 +50,7 @@ class AsrConfig(Section):
 
 
 class DialogueConfig(Section):
-    nlu: Literal["amiro", "oracle"] = "amiro"
+    nlu: Annotated[str, backend_name("nlu")] = "amiro"
     nlu_threshold: float = Field(default=DEFAULT_THRESHOLD, ge=0.0, le=1.0)
     training_data: dict[Literal["en", "ro", "fr"], Path] = Field(
         default_factory=dict, description="language -> Rasa-style YAML replacing the shipped data"

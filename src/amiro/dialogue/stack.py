@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 from amiro.core.registry import create
 from amiro.core.runtime import Runtime
-from amiro.dialogue import asr as _asr  # noqa: F401 - registers the ASR backends
 from amiro.dialogue.actions import Actions, Submit
 from amiro.dialogue.asr import ConfidenceGate, Recognizer
 from amiro.dialogue.audio_loop import AudioLoopUnderstanding
@@ -33,23 +32,19 @@ class Dialogue:
 
 
 def make_synthesizer(cfg: DialogueConfig) -> Synthesizer:
-    kwargs = {"voice": cfg.tts.piper_voice} if cfg.tts.backend == "piper" else {}
-    synthesizer: Synthesizer = create("tts", cfg.tts.backend, **kwargs)
+    """The TTS engine ``tts.backend`` names (:mod:`amiro.dialogue.backends`)."""
+    synthesizer: Synthesizer = create("tts", cfg.tts.backend, cfg.tts)
     return synthesizer
 
 
 def make_recognizer(
     cfg: DialogueConfig, grammar: str | None = None, lang: str = "en"
 ) -> Recognizer:
-    backend = cfg.asr.backend
-    if backend == "pocketsphinx":
-        kwargs: dict[str, object] = {"grammar": grammar or cfg.asr.grammar, "lang": lang}
-    elif backend == "vosk":
-        kwargs = {"model": cfg.asr.vosk_model}
-    else:
-        kwargs = {"lang": lang}
-    recognizer: Recognizer = create("asr", backend, **kwargs)
-    answers = (grammar or cfg.asr.grammar) == "answers"
+    """The recogniser ``asr.backend`` names, its results gated by the configured confidence
+    threshold (the Listen one for the ``answers`` grammar)."""
+    grammar = grammar or cfg.asr.grammar
+    recognizer: Recognizer = create("asr", cfg.asr.backend, cfg.asr, grammar, lang)
+    answers = grammar == "answers"
     return ConfidenceGate(
         recognizer, cfg.asr.listen_reject_below if answers else cfg.asr.reject_below
     )
@@ -62,12 +57,24 @@ def build_understanding(
     heard text, the NLU behind simulated audio and the ASR (``asr.sim_audio``), or the
     oracle when configured."""
     nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
-    if cfg.nlu == "oracle":
-        return nlu, OracleUnderstanding()
+    understanding: Understanding = create("nlu", cfg.nlu, nlu, cfg, profiles)
+    return nlu, understanding
+
+
+def amiro_understanding(
+    nlu: Nlu, cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
+) -> Understanding:
+    """The household's NLU on the heard text, or behind simulated audio and the ASR."""
     if cfg.asr.sim_audio:
         recognizer = make_recognizer(cfg, grammar="answers")
-        return nlu, AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
-    return nlu, nlu
+        return AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
+    return nlu
+
+
+def oracle_understanding(
+    nlu: Nlu, cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
+) -> Understanding:
+    return OracleUnderstanding()
 
 
 def build_dialogue(

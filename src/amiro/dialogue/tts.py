@@ -6,15 +6,13 @@ from __future__ import annotations
 
 import shutil
 import subprocess
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from amiro.core.config import ConfigError
-from amiro.core.registry import register
 from amiro.dialogue.audio import Audio, read_wav_bytes
 
-register("tts", "espeak", "amiro.dialogue.tts:EspeakSynthesizer")
-register("tts", "piper", "amiro.dialogue.tts_extras:PiperSynthesizer")
-register("tts", "google", "amiro.dialogue.tts_extras:GoogleSynthesizer")
+if TYPE_CHECKING:
+    from amiro.dialogue.config import TtsConfig
 
 ESPEAK_VOICES = {"en": "en-us", "ro": "ro", "fr": "fr-fr"}
 
@@ -42,3 +40,7 @@ class EspeakSynthesizer:
             problem = done.stderr.decode(errors="replace").strip().splitlines()
             raise ConfigError(f"tts: espeak-ng failed: {problem[0] if problem else 'no audio'}")
         return read_wav_bytes(done.stdout, "espeak-ng output")
+
+
+def espeak_synthesizer(cfg: TtsConfig) -> Synthesizer:
+    return EspeakSynthesizer()

@@ -5,10 +5,13 @@ from __future__ import annotations
 import io
 import wave
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.audio import Audio, read_wav_bytes
+
+if TYPE_CHECKING:
+    from amiro.dialogue.config import TtsConfig
 
 
 class PiperSynthesizer:
@@ -56,3 +59,11 @@ class GoogleSynthesizer:
             audio_config=api.AudioConfig(audio_encoding=api.AudioEncoding.LINEAR16),
         )
         return read_wav_bytes(response.audio_content, "google tts output")
+
+
+def piper_synthesizer(cfg: TtsConfig) -> PiperSynthesizer:
+    return PiperSynthesizer(cfg.piper_voice)
+
+
+def google_synthesizer(cfg: TtsConfig) -> GoogleSynthesizer:
+    return GoogleSynthesizer()

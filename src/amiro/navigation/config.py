@@ -3,16 +3,18 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Annotated
 
 from pydantic import Field
 
 from amiro.core.config import Section
+from amiro.core.registry import backend_name
+from amiro.navigation import backends as _backends  # noqa: F401 - registers the names
 
 
 class NavigationConfig(Section):
     map: Path | None = Field(default=None, description="map_server YAML; None: the home's map")
-    localization: Literal["amcl", "oracle"] = Field(
+    localization: Annotated[str, backend_name("localization")] = Field(
         default="amcl",
         description="amcl: particle filter on /odom + /scan; oracle: the simulator's true pose",
     )

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from amiro.core import names
+from amiro.core import names, registry
 from amiro.core.config import ConfigError
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
@@ -19,7 +19,13 @@ from amiro.navigation.likelihood import LikelihoodField
 from amiro.navigation.localization import AmclLocalizer, Localizer, OracleLocalizer
 from amiro.navigation.move_to import MoveToNode
 
-__all__ = ["build_navigation", "costmap_from_map", "make_localizer"]
+__all__ = [
+    "amcl_localizer",
+    "build_navigation",
+    "costmap_from_map",
+    "make_localizer",
+    "oracle_localizer",
+]
 
 
 def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
@@ -31,16 +37,36 @@ def costmap_from_map(grid: GridMap, cfg: NavigationConfig) -> Costmap:
     return Costmap(blocked, frame, cfg.robot_radius, cfg.safety_margin)
 
 
+def amcl_localizer(
+    grid: GridMap,
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> Localizer:
+    params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
+    return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
+
+
+def oracle_localizer(
+    grid: GridMap,
+    cfg: NavigationConfig,
+    initial_pose: Pose2D | None = None,
+    rng: np.random.Generator | None = None,
+) -> Localizer:
+    return OracleLocalizer(names.GROUND_TRUTH)
+
+
 def make_localizer(
     grid: GridMap,
     cfg: NavigationConfig,
     initial_pose: Pose2D | None = None,
     rng: np.random.Generator | None = None,
 ) -> Localizer:
-    if cfg.localization == "oracle":
-        return OracleLocalizer(names.GROUND_TRUTH)
-    params = AmclParams(max_particles=cfg.amcl_particles, beams=cfg.amcl_beams)
-    return AmclLocalizer(LikelihoodField(grid), params, initial_pose, rng)
+    """The localiser ``cfg.localization`` names (:mod:`amiro.navigation.backends`)."""
+    localizer: Localizer = registry.create(
+        "localization", cfg.localization, grid, cfg, initial_pose, rng
+    )
+    return localizer
 
 
 def build_navigation(

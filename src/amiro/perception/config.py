@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
 from amiro.core.config import Section
+from amiro.core.registry import backend_name
+from amiro.perception import backends as _backends  # noqa: F401 - registers the names
 
 
 class SimDetectorSection(Section):
@@ -43,7 +45,7 @@ class SimDetectorSection(Section):
 
 
 class FaceSection(Section):
-    backend: Literal["sim", "dlib"] = Field(
+    backend: Annotated[str, backend_name("faces")] = Field(
         default="sim", description="sim: the simulator's error model; dlib: face_recognition"
     )
     threshold: float = Field(default=0.6, gt=0.0, description="max embedding distance to match")
@@ -67,7 +69,7 @@ class CameraSection(Section):
     camera sits.  Without head joints on ``/joint_states`` the camera is fixed at
     ``yaw``/``pitch`` on the base (a fixed extrinsic)."""
 
-    detector: Literal["hog", "onnx"] = Field(
+    detector: Annotated[str, backend_name("detector")] = Field(
         default="hog", description="hog: OpenCV's people detector; onnx: a YOLO-layout model"
     )
     model: Path | None = Field(default=None, description="onnx: the detector's model file")
@@ -88,7 +90,7 @@ class CameraSection(Section):
 
 
 class PerceptionConfig(Section):
-    backend: Literal["sim", "oracle", "camera"] = Field(
+    backend: Annotated[str, backend_name("perception")] = Field(
         default="sim",
         description="sim: simulated detector + faces + estimator + tracker; oracle: ground "
         "truth; camera: the robot's RGB-D camera topics",

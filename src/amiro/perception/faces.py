@@ -78,9 +78,10 @@ class DlibFaceEmbedder:
             with warnings.catch_warnings():  # face_recognition_models still uses pkg_resources
                 warnings.filterwarnings("ignore", "pkg_resources is deprecated", UserWarning)
                 face_recognition = importlib.import_module("face_recognition")
-        except ImportError as exc:
+        except ImportError as exc:  # the message the registry gives a missing extra
             raise ConfigError(
-                f"the dlib face backend needs face_recognition and dlib-bin: {exc}"
+                "faces backend 'dlib' needs the extra amiro[faces] "
+                f"(missing module: {exc.name or exc})"
             ) from None
         self._fr: Any = face_recognition
         self.model = model

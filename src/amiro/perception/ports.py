@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 import numpy.typing as npt
@@ -49,6 +49,14 @@ class PeopleFinder(Protocol):
     def look(self) -> list[SeenPerson]:
         """Who the robot's camera sees at this moment."""
         ...
+
+
+@runtime_checkable
+class TracksPeople(Protocol):
+    """A people finder that knows whom it tracks (a real camera's), so the fall monitor
+    watches them; the simulator's finders leave that to the residents' names."""
+
+    def people(self) -> list[str]: ...
 
 
 @dataclass(frozen=True, eq=False)

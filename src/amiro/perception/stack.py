@@ -4,16 +4,19 @@ The ``sim`` backend is the module's real pipeline run on the simulated head came
 boxes, the depth of each box, face identity, the 3D estimator with the head joints and the
 robot's pose, and the tracker.  It reads the camera through :class:`HeadCamera`, so it runs
 the same in one process and on a deployment's edge.  The ``oracle`` backend is kept for
-tests and as a baseline, chosen only by name.
+tests and as a baseline, chosen only by name.  Backends are looked up by name in the
+registry (:mod:`amiro.perception.backends`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from amiro.core import registry
 from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Detection2D, Point, Pose2D
 from amiro.perception.config import PerceptionConfig
@@ -30,7 +33,9 @@ from amiro.perception.sim_detector import SimDetector, best_match
 from amiro.perception.sim_faces import SimFaceIdentifier
 from amiro.perception.tracking import Measurement, PeopleTracker
 from amiro.robot.camera import CameraObservation, HeadCamera
-from amiro.sim.perception_oracle import OraclePeopleFinder
+
+if TYPE_CHECKING:
+    from amiro.robot.camera_feed import CameraFeed
 
 # Depth the simulator's camera reports for a box no resident explains (a false positive):
 # whatever lies behind it, drawn in this range (m).
@@ -148,6 +153,39 @@ class SimPeopleFinder:
         return improved(geometry, u, row, depth, views)
 
 
+@dataclass(frozen=True)
+class PerceptionInputs:
+    """What a people finder is built on: the simulator's head camera (or a feed of its
+    topics) in ``head``, or a real robot's RGB-D camera in ``feed``; the other is None.
+    Positions go into the map frame through ``localization`` (the robot's pose estimate)."""
+
+    cfg: PerceptionConfig
+    rng: np.random.Generator
+    localization: PoseSource | None = None
+    head: HeadCamera | None = None
+    feed: CameraFeed | None = None
+
+    def simulated_head(self) -> HeadCamera:
+        """The simulator's head camera, or the one-line error a real robot's config gets."""
+        if self.head is None:
+            raise ConfigError(
+                f"perception.backend: {self.cfg.backend} reads the simulator; a real robot "
+                "needs camera"
+            )
+        return self.head
+
+
+def sim_people_finder(inputs: PerceptionInputs) -> PeopleFinder:
+    head, cfg = inputs.simulated_head(), inputs.cfg
+    if cfg.faces.backend != "sim":  # the simulator's own face model, on its ground truth
+        raise ConfigError(
+            f"perception.faces.backend: {cfg.faces.backend} needs camera images and the "
+            "simulated camera renders none; use sim here (FaceGallery + DlibFaceEmbedder work "
+            "on real images)"
+        )
+    return SimPeopleFinder(head, inputs.rng, cfg, inputs.localization)
+
+
 def build_people_finder(
     camera: HeadCamera,
     rng: np.random.Generator,
@@ -157,16 +195,6 @@ def build_people_finder(
     """The people finder ``cfg.backend`` names, on ``camera`` (the simulator or a feed of its
     topics); positions go into the map frame through ``localization`` (the robot's pose
     estimate), or the pose the camera's source knows without it."""
-    if cfg.backend == "camera":
-        raise ConfigError(
-            "perception.backend: camera reads a real robot's camera topics: build it with "
-            "amiro.system.camera.build_camera_modules (robot.adapter: ros2 or naoqi)"
-        )
-    if cfg.backend == "oracle":
-        return OraclePeopleFinder(camera, rng, cfg.position_noise_m)
-    if cfg.faces.backend == "dlib":
-        raise ConfigError(
-            "perception.faces.backend: dlib needs camera images and the simulated camera "
-            "renders none; use sim here (FaceGallery + DlibFaceEmbedder work on real images)"
-        )
-    return SimPeopleFinder(camera, rng, cfg, localization)
+    inputs = PerceptionInputs(cfg, rng, localization, head=camera)
+    finder: PeopleFinder = registry.create("perception", cfg.backend, inputs)
+    return finder

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from amiro.activity.ports import ActivityReading
+from amiro.activity.ports import ActivityReading, ActivityRecognizer
+from amiro.activity.stack import ActivityInputs
 from amiro.robot.camera import HeadCamera
 from amiro.sim.residents import ACTIVITIES
 
@@ -30,3 +31,10 @@ class OracleActivityRecognizer:
             others = [a for a in ACTIVITIES if a != label]
             label = others[int(self.rng.integers(len(others)))]
         return ActivityReading(label, float(self.accuracy), True)
+
+
+def oracle_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
+    """The ``oracle`` activity backend (registered in :mod:`amiro.activity.backends`)."""
+
+    camera, _ = inputs.simulated()
+    return OracleActivityRecognizer(camera, inputs.rng, inputs.cfg.accuracy)

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from amiro.core.messages import Point
-from amiro.perception.ports import SeenPerson
+from amiro.perception.ports import PeopleFinder, SeenPerson
+from amiro.perception.stack import PerceptionInputs
 from amiro.robot.camera import HeadCamera
 
 
@@ -30,3 +31,8 @@ class OraclePeopleFinder:
             name = obs.name if obs.face_visible else None
             seen.append(SeenPerson(name, position, 0.9 if name else 0.6))
         return seen
+
+
+def oracle_people_finder(inputs: PerceptionInputs) -> PeopleFinder:
+    """The ``oracle`` perception backend (registered in :mod:`amiro.perception.backends`)."""
+    return OraclePeopleFinder(inputs.simulated_head(), inputs.rng, inputs.cfg.position_noise_m)

@@ -45,7 +45,7 @@ from amiro.navigation.move_to import MoveToNode
 from amiro.navigation.primitives import PrimitivesNode
 from amiro.navigation.stack import build_navigation
 from amiro.perception.config import PerceptionConfig
-from amiro.perception.ports import PeopleFinder
+from amiro.perception.ports import PeopleFinder, TracksPeople
 from amiro.perception.stack import PoseSource, build_people_finder
 from amiro.robot.adapter import RobotAdapter, adapter_type
 from amiro.robot.build import RealRobot
@@ -236,8 +236,9 @@ def build_behavior_layer(
         handlers.register(kind, yaml_handler(path), replace=True)
     residents = [p.name for p in cfg.people()]
     # A camera robot watches the people it tracks; the simulator names its residents.
+    perception = modules["perception"]
     watch: Callable[[], list[str]] = (
-        modules["perception"].people if cfg.perception.backend == "camera" else lambda: residents
+        perception.people if isinstance(perception, TracksPeople) else lambda: residents
     )
     if cfg.activity.fall_detection:
         runtime.add(
@@ -283,11 +284,6 @@ def _build_on_robot(cfg: SystemConfig, runtime: Runtime, adapter: type[RobotAdap
         raise ConfigError(
             "robot.adapter: naoqi alone has no laser or camera for navigation and perception: "
             "use adapter ros2 (Pepper's naoqi_driver2) with naoqi.handles beside it"
-        )
-    if cfg.perception.backend != "camera":
-        raise ConfigError(
-            f"perception.backend: {cfg.perception.backend} reads the simulator; a real robot "
-            f"(robot.adapter: {cfg.robot.adapter}) needs perception.backend: camera"
         )
     if cfg.navigation.localization == "oracle":
         raise ConfigError("navigation.localization: oracle is the simulator's true pose; use amcl")

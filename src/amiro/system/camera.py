@@ -13,13 +13,15 @@ from typing import Protocol
 
 from amiro.activity.config import ActivityConfig
 from amiro.activity.ports import ActivityRecognizer
+from amiro.activity.stack import ActivityInputs, CameraSkeletons, create_recognizer
+from amiro.core import registry
 from amiro.core.config import ConfigError
 from amiro.core.runtime import Runtime
 from amiro.perception.camera_finder import CameraPeopleFinder
 from amiro.perception.config import CameraSection, PerceptionConfig
 from amiro.perception.faces import FaceGallery, dlib_gallery
-from amiro.perception.ports import Detector
-from amiro.perception.stack import PoseSource
+from amiro.perception.ports import Detector, PeopleFinder
+from amiro.perception.stack import PerceptionInputs, PoseSource
 from amiro.robot.camera_feed import CameraFeed
 
 
@@ -40,51 +42,40 @@ class CameraModules:
     activity: ActivityRecognizer
 
 
-def build_detector(cfg: CameraSection) -> Detector:
-    if cfg.detector == "onnx":
-        from amiro.perception.onnx_yolo import YoloOnnxDetector
-
-        assert cfg.model is not None  # the section's validator requires it
-        return YoloOnnxDetector(cfg.model, min_score=cfg.min_score)
+def hog_detector(cfg: CameraSection) -> Detector:
     from amiro.perception.hog import HogPeopleDetector
 
     return HogPeopleDetector(min_score=cfg.min_score)
 
 
-def build_faces(cfg: PerceptionConfig) -> FaceGallery | None:
-    """The dlib gallery with ``faces.backend: dlib``; else people are tracked unnamed."""
-    if cfg.faces.backend != "dlib":
-        return None
+def onnx_detector(cfg: CameraSection) -> Detector:
+    from amiro.perception.onnx_yolo import YoloOnnxDetector
+
+    assert cfg.model is not None  # the section's validator requires it
+    return YoloOnnxDetector(cfg.model, min_score=cfg.min_score)
+
+
+def unnamed_faces(cfg: PerceptionConfig) -> FaceGallery | None:
+    """``faces.backend: sim`` on a camera: the simulator's face model needs its ground
+    truth, so people are tracked unnamed."""
+    return None
+
+
+def dlib_faces(cfg: PerceptionConfig) -> FaceGallery:
     return dlib_gallery(cfg.faces.gallery, cfg.faces.threshold)
 
 
-def build_camera_activity(
-    runtime: Runtime, cfg: ActivityConfig, feed: CameraFeed, people: CameraPeopleFinder
-) -> ActivityRecognizer:
-    """The activity model on skeletons the configured pose model finds in the camera."""
-    from amiro.activity.camera_skeletons import CameraSkeletonSource
-    from amiro.activity.onnx_model import ActivityModel
-    from amiro.activity.pose import PoseOnnxEstimator
-    from amiro.activity.recognizer import SkeletonActivityRecognizer
-
-    pose = cfg.pose
-    if pose.model is None:
-        raise ConfigError("activity.pose.model: camera-onnx needs a pose model (ONNX file)")
-    model = ActivityModel(cfg.model)
-    estimator = PoseOnnxEstimator(pose.model, pose.keypoints, pose.min_score, pose.nms_iou)
-    source = runtime.add(
-        CameraSkeletonSource(
-            feed,
-            estimator,
-            model.info.fps,  # the rate the activity model was trained at
-            pose.min_keypoint,
-            locate=people.locate,
-            place=people.place,
+def camera_people_finder(inputs: PerceptionInputs) -> PeopleFinder:
+    """The configured detector and faces on a real robot's camera feed."""
+    if inputs.feed is None or inputs.localization is None:
+        raise ConfigError(
+            "perception.backend: camera reads a real robot's camera topics: build it with "
+            "amiro.system.camera.build_camera_modules (robot.adapter: ros2 or naoqi)"
         )
-    )
-    return SkeletonActivityRecognizer(
-        source, model, cfg.window_frames, cfg.min_confidence, cfg.min_visible
-    )
+    p = inputs.cfg
+    detector: Detector = registry.create("detector", p.camera.detector, p.camera)
+    faces: FaceGallery | None = registry.create("faces", p.faces.backend, p)
+    return CameraPeopleFinder(inputs.feed, detector, p, inputs.localization, faces)
 
 
 def build_camera_modules(
@@ -93,17 +84,15 @@ def build_camera_modules(
     """The camera feed, people finder and activity recogniser of a real robot, added to
     ``runtime``; people are placed in the map with ``localization`` (the robot's pose)."""
     p = cfg.perception
-    if p.backend != "camera":
-        raise ConfigError(
-            f"perception.backend: {p.backend} reads the simulator; a real robot needs camera"
-        )
-    if cfg.activity.backend != "camera-onnx":
-        raise ConfigError(
-            f"activity.backend: {cfg.activity.backend} reads the simulator; a real robot needs "
-            "camera-onnx (with activity.pose.model)"
-        )
     c = p.camera
     feed = runtime.add(CameraFeed(c.yaw, c.pitch, c.head_joints, c.max_skew_s))
-    people = CameraPeopleFinder(feed, build_detector(c), p, localization, build_faces(p))
-    activity = build_camera_activity(runtime, cfg.activity, feed, people)
+    inputs = PerceptionInputs(p, runtime.rng, localization, feed=feed)
+    people = registry.create("perception", p.backend, inputs)
+    if not isinstance(people, CameraPeopleFinder):  # the pose model shares its tracks
+        raise ConfigError(
+            f"perception.backend: {p.backend} gave no CameraPeopleFinder, which a robot's "
+            "camera needs (activity's pose model shares its tracks)"
+        )
+    camera = CameraSkeletons(runtime, feed, people.locate, people.place)
+    activity = create_recognizer(ActivityInputs(cfg.activity, runtime.rng, camera=camera))
     return CameraModules(feed, people, activity)
