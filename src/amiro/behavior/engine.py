@@ -26,8 +26,15 @@ from amiro.behavior.checkpoint import (
     FinishedTask,
     portable,
 )
-from amiro.behavior.graph import End, TaskGraph, task_type_name
-from amiro.behavior.task import Task, TaskContext, TaskError, TaskRecord, TaskStatus
+from amiro.behavior.graph import End, TaskGraph
+from amiro.behavior.task import (
+    Task,
+    TaskContext,
+    TaskError,
+    TaskRecord,
+    TaskStatus,
+    task_type_name,
+)
 from amiro.core.config import Section
 from amiro.core.messages import BehaviorEvent
 from amiro.core.node import Node
