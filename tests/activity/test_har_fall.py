@@ -5,16 +5,18 @@ import subprocess
 import sys
 from typing import Any
 
+import pytest
+
 import amiro.behavior.tasks  # noqa: F401 - registers the task types
 from amiro.activity.fall import FALL_KIND, FALL_PRIORITY, FallMonitorNode
 from amiro.activity.ports import ActivityReading
 from amiro.behavior.engine import EVENTS_TOPIC, BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry
-from amiro.behavior.loader import load_behavior, load_behavior_data
+from amiro.behavior.loader import load_behavior, load_behavior_data, loads_behavior
 from amiro.behavior.notifications import NotificationHandlerNode
 from amiro.core import names
 from amiro.core.clock import SimClock
-from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification
+from amiro.core.messages import Acknowledgement, BehaviorEvent, Notification, SpeechHeard
 from amiro.core.runtime import Runtime
 from amiro.system import shipped_behavior
 
@@ -156,3 +158,42 @@ def test_the_fall_monitor_does_not_import_the_behaviour_layer() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+class AffirmNLU:
+    def intent(self, heard: SpeechHeard) -> tuple[str, float]:
+        return ("affirm" if heard.text == "yes" else "deny"), 1.0
+
+
+class OneSecondSpeech:
+    def say(self, text: str, lang: str, act: str, to: str) -> float:
+        return 1.0
+
+
+@pytest.mark.parametrize(
+    ("answer", "outcome", "status"),
+    [("yes", "resident_ok", "done"), ("no", "help_called", "failed")],
+)
+def test_the_fall_behaviour_acknowledges_its_notification(
+    answer: str, outcome: str, status: str
+) -> None:
+    """From its question on, the shipped fall behaviour answers the notification it runs for."""
+    runtime = Runtime(SimClock())
+    modules = {"clock": runtime.clock, "nlu": AffirmNLU(), "speech": OneSecondSpeech()}
+    engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules=modules))
+    handlers = HandlerRegistry(engine)
+    text = shipped_behavior("fall").read_text(encoding="utf-8")
+    handlers.register(
+        FALL_KIND, lambda p: loads_behavior(text.replace("entry: search", "entry: ask"), "f", p)
+    )
+    runtime.add(NotificationHandlerNode(engine, handlers, {}))
+    _, acks = _bus_log(runtime)
+    runtime.start()
+    runtime.bus.publish(names.NOTIFICATIONS, Notification("f-1", "maria", FALL_KIND, 100))
+    runtime.spin_for(2.0)
+    runtime.bus.publish(names.HEARD, SpeechHeard(answer, "en", "maria"))
+    runtime.spin_until(lambda: bool(engine.runs) and engine.idle, 20.0)
+    runtime.spin_for(1.0)
+    (run,) = engine.runs.values()
+    assert run.outcome == outcome
+    assert [(a.id, a.status) for a in acks] == [("f-1", status)]
