@@ -14,6 +14,7 @@ import pytest
 from amiro import __version__
 from amiro.cli import build_parser, main
 from amiro.commands.planning import ENGINES
+from amiro.system import shipped_behavior
 
 
 def amiro(*args: str) -> subprocess.CompletedProcess[str]:
@@ -135,6 +136,17 @@ def test_bad_config_is_a_one_line_error(tmp_path: Path, content: str, expected: 
     path.write_text(content)
     line = one_line_error(amiro("run", "hydration", "--headless", "--config", str(path)))
     assert expected in line
+
+
+def test_a_misspelt_task_parameter_in_a_configured_behaviour_exits_2(tmp_path: Path) -> None:
+    shipped = shipped_behavior("hydration").read_text(encoding="utf-8")
+    assert "timeout_s: 10" in shipped
+    behaviour = tmp_path / "hydration.yaml"
+    behaviour.write_text(shipped.replace("timeout_s: 10", "timout_s: 10", 1), encoding="utf-8")
+    path = tmp_path / "bad.yaml"
+    path.write_text(f"behavior:\n  handlers:\n    hydration: {behaviour}\n")
+    line = one_line_error(amiro("run", "hydration", "--headless", "--config", str(path)))
+    assert f"{behaviour}: tasks." in line and "Listen: unknown parameter 'timout_s'" in line
 
 
 def test_usage_errors_exit_2() -> None:

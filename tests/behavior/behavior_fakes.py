@@ -4,7 +4,14 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from amiro.behavior import BehaviorEngine, EngineConfig, Task, TaskContext, TaskStatus
+from amiro.behavior import (
+    BehaviorEngine,
+    EngineConfig,
+    Task,
+    TaskContext,
+    TaskParams,
+    TaskStatus,
+)
 from amiro.core.clock import SimClock
 from amiro.core.runtime import Runtime
 
@@ -15,6 +22,12 @@ class FakeWork(Task):
     """Atomic work lasting ``duration`` seconds of clock time; optionally writes a result."""
 
     type_name = "FakeWork"
+
+    class Params(TaskParams):
+        duration: float = 1.0
+        succeed: bool = True
+        write: str = ""
+        value: Any = None
 
     def __init__(
         self, duration: float | str = 1.0, succeed: bool = True, write: str = "", value: Any = None
@@ -51,6 +64,9 @@ class FakeBoom(Task):
     """Raises in start or update; or asks for a module that may not exist."""
 
     type_name = "FakeBoom"
+
+    class Params(TaskParams):
+        where: str = "update"
 
     def __init__(self, where: str = "update") -> None:
         super().__init__(where=where)

@@ -1,11 +1,19 @@
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, ClassVar
 
 import pytest
 from behavior_fakes import EPS, FakeBoom, FakeWait, FakeWork, make_engine, order, run_all
 
-from amiro.behavior import End, RunStatus, Task, TaskError, TaskGraph
+from amiro.behavior import (
+    End,
+    RunStatus,
+    Task,
+    TaskContext,
+    TaskError,
+    TaskGraph,
+    TaskStatus,
+)
 from amiro.core import names
 from amiro.core.messages import BehaviorEvent
 
@@ -205,6 +213,44 @@ def test_cancellable_task_is_preempted_within_one_tick_and_resumes_afresh() -> N
     resumed_ev = [e for e in engine.events if e.type == "graph_resumed"]
     assert [(e.graph, e.task) for e in resumed_ev] == [("A#1", "a1")]
     assert a.outcome == b.outcome == "completed"
+
+
+class FinishOnSignal(Task):
+    """Cancellable; ends with a result on the first update after ``signal`` is set."""
+
+    cancellable = True
+    signal: ClassVar[list[bool]] = []
+    starts: ClassVar[list[float]] = []
+
+    def start(self, ctx: TaskContext) -> None:
+        FinishOnSignal.starts.append(ctx.now())
+
+    def update(self, ctx: TaskContext) -> TaskStatus:
+        if not FinishOnSignal.signal:
+            return TaskStatus.RUNNING
+        ctx.blackboard["result"] = "kept"
+        return TaskStatus.SUCCESS
+
+
+def test_task_finishing_on_the_preempting_tick_keeps_its_result() -> None:
+    FinishOnSignal.signal.clear()
+    FinishOnSignal.starts.clear()
+    runtime, engine = make_engine(preemption=True)
+    a = engine.submit(
+        chain("A", 1, ("a1", FinishOnSignal()), ("a2", FakeWork(0.1, value="$result")))
+    )
+    runtime.spin_for(0.3)
+    FinishOnSignal.signal.append(True)  # a1 is done at its next poll ...
+    engine.submit(chain("B", 5, ("b1", FakeWork(0.2))))  # ... which is when B arrives
+    run_all(runtime, engine)
+    assert order(engine) == [
+        ("A#1", "a1", "success"),
+        ("B#1", "b1", "success"),
+        ("A#1", "a2", "success"),
+    ]
+    assert len(FinishOnSignal.starts) == 1  # not re-run from the start
+    assert not [e for e in engine.events if e.type == "task_preempted"]
+    assert a.records[-1].detail == {"value": "kept"}
 
 
 def test_with_extension_off_a_cancellable_task_is_waited_for() -> None:

@@ -5,8 +5,9 @@ from pathlib import Path
 import pytest
 from behavior_fakes import FakeWork, make_engine, order, run_all
 
-from amiro.behavior import End, load_behavior, loads_behavior
+from amiro.behavior import End, GraphRun, load_behavior, loads_behavior
 from amiro.core.config import ConfigError
+from amiro.system import SHIPPED_BEHAVIORS, shipped_behavior
 
 assert FakeWork.type_name == "FakeWork"  # registers the fake types used below
 
@@ -96,3 +97,71 @@ def test_missing_file_is_a_config_error(tmp_path: Path) -> None:
 def test_bad_edge_shape() -> None:
     msg = one_line_error(GOOD.replace("{end: person_not_found}", "{ends: person_not_found}"))
     assert "tasks.search.on_failure: Value error, an edge is a task id or {end: outcome}" in msg
+
+
+# --- typed task parameters ---------------------------------------------------------------
+
+LISTEN = """
+name: ask
+priority: 1
+blackboard: {wait: 0.2}
+entry: listen
+tasks:
+  listen: {type: Listen, params: {expect: [affirm], timeout_s: $wait}}
+"""
+
+
+def test_a_misspelt_parameter_is_refused_naming_file_task_and_field(tmp_path: Path) -> None:
+    path = tmp_path / "hydration.yaml"
+    path.write_text(LISTEN.replace("timeout_s: $wait", "timout_s: 10"), encoding="utf-8")
+    with pytest.raises(ConfigError) as info:
+        load_behavior(path)
+    msg = str(info.value)
+    assert "\n" not in msg and msg.startswith(f"{path}: ")
+    assert "tasks.listen.params: Listen: unknown parameter 'timout_s'" in msg
+    assert "did you mean 'timeout_s'" in msg
+
+
+def test_a_misspelt_parameter_written_as_a_reference_is_refused() -> None:
+    msg = one_line_error(LISTEN.replace("timeout_s: $wait", "timout_s: $wait"))
+    assert "tasks.listen.params: Listen: unknown parameter 'timout_s'" in msg
+
+
+def test_a_parameter_of_the_wrong_type_is_refused() -> None:
+    msg = one_line_error(LISTEN.replace("timeout_s: $wait", "timeout_s: soon"))
+    assert "tasks.listen.params: Listen: parameter 'timeout_s'" in msg and "'soon'" in msg
+    msg = one_line_error(LISTEN.replace("expect: [affirm]", "expect: {yes: 1}"))
+    assert "parameter 'expect'" in msg
+
+
+def test_a_missing_required_parameter_is_refused() -> None:
+    msg = one_line_error(LISTEN.replace("type: Listen", "type: Search"))
+    assert "tasks.listen.params: Search: unknown parameter 'expect'" in msg
+    text = "name: x\nentry: s\ntasks:\n  s: {type: Search, params: {dwell_s: 1}}\n"
+    assert "Search: missing parameter 'person'" in one_line_error(text)
+
+
+def run_listen(wait: object) -> GraphRun:
+    runtime, engine = make_engine()
+    run = engine.submit(loads_behavior(LISTEN, overrides={"wait": wait}))
+    run_all(runtime, engine)
+    started = [e for e in engine.events if e.type == "task_started"]
+    assert started[0].detail["params"] == {"expect": ["affirm"], "timeout_s": "$wait"}
+    return run
+
+
+def test_references_resolve_and_are_validated_when_the_task_starts() -> None:
+    g = loads_behavior(LISTEN)  # `$wait` stands for a number until the task starts
+    assert g.tasks["listen"].task.params == {"expect": ["affirm"], "timeout_s": "$wait"}
+    timed_out = run_listen(0.2).records[0]
+    assert timed_out.detail == {"reason": "no_answer"}
+    assert timed_out.end_s - timed_out.start_s == pytest.approx(0.2, abs=0.051)
+    refused = run_listen("soon").records[0]
+    assert refused.result == "failure" and refused.end_s == refused.start_s
+    assert "Listen: parameter 'timeout_s'" in refused.detail["error"]
+
+
+def test_shipped_behaviours_load() -> None:
+    for name in SHIPPED_BEHAVIORS:
+        graph = load_behavior(shipped_behavior(name))
+        assert graph.name == name and graph.tasks

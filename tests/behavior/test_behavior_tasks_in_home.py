@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from amiro.behavior.engine import GraphRun
 from amiro.behavior.graph import TaskGraph
 from amiro.behavior.handlers import yaml_handler
-from amiro.behavior.task import make_task
+from amiro.behavior.task import TaskError, make_task
 from amiro.core.messages import Acknowledgement, Notification, Point, SpeechRequest
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import System, SystemConfig, build_system
@@ -88,8 +90,11 @@ def test_notify_environment_publishes_the_contract_ack() -> None:
     assert run.outcome == "completed"
     assert [(a.id, a.status) for a in acks] == [("n-42", "postponed")]
     assert acks[0].ts.startswith("2026-") and acks[0].ts.endswith("+00:00")
-    bad = TaskGraph("bad", 1).add("ack", make_task("NotifyEnvironment", {"status": "maybe"}))
-    assert run_graph(system, bad).outcome == "failed"
+    with pytest.raises(TaskError, match="parameter 'status'"):
+        make_task("NotifyEnvironment", {"status": "maybe"})  # refused as written ...
+    bad = TaskGraph("bad", 1, blackboard={"s": "maybe"})
+    bad.add("ack", make_task("NotifyEnvironment", {"status": "$s"}))
+    assert run_graph(system, bad).outcome == "failed"  # ... and as read from the blackboard
 
 
 def test_move_to_a_place_and_to_a_person() -> None:

@@ -26,8 +26,15 @@ from amiro.behavior.checkpoint import (
     FinishedTask,
     portable,
 )
-from amiro.behavior.graph import End, TaskGraph, task_type_name
-from amiro.behavior.task import Task, TaskContext, TaskError, TaskRecord, TaskStatus
+from amiro.behavior.graph import End, TaskGraph
+from amiro.behavior.task import (
+    Task,
+    TaskContext,
+    TaskError,
+    TaskRecord,
+    TaskStatus,
+    task_type_name,
+)
 from amiro.core import names
 from amiro.core.config import Section
 from amiro.core.messages import BehaviorEvent
@@ -279,15 +286,18 @@ class BehaviorEngine(Node):
 
     # --- control loop ---------------------------------------------------------------------
     def tick(self) -> None:
-        """One control step: preempt if allowed, update the running task, start the next."""
-        if self._active is not None and self._should_preempt(self._active):
-            self._preempt(self._active)
+        """One control step: update the running task, preempt it if it is still running and
+        allowed to be, start the next.  Polling first keeps the result of a task that ends on
+        the tick a more urgent behaviour arrives (it is not cancelled and re-run)."""
         nxt: _Pending | None = None
         if self._active is not None:
             status, error = self._poll(self._active)
             if status is TaskStatus.RUNNING:
-                return
-            nxt = self._complete(status, error)
+                if not self._should_preempt(self._active):
+                    return
+                self._preempt(self._active)
+            else:
+                nxt = self._complete(status, error)
         for _ in range(_MAX_STARTS_PER_TICK):
             if nxt is None:
                 if self._active is not None or not self._queue:

@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, TypeAlias
 
-from amiro.behavior.task import Task, TaskError
+from amiro.behavior.task import Task, TaskError, task_type_name
 
 
 @dataclass(frozen=True, slots=True)
@@ -49,11 +49,6 @@ class TaskNode:
     @property
     def type_name(self) -> str:
         return task_type_name(self.task)
-
-
-def task_type_name(task: Task) -> str:
-    """The task's registered type, or its class name for unregistered (test) types."""
-    return task.type_name or type(task).__name__
 
 
 class TaskGraph:

@@ -69,7 +69,11 @@ class HandlerRegistry:
 
 
 def yaml_handler(path: str | Path) -> HandlerFactory:
-    """A factory loading a YAML behaviour, with the payload overriding its blackboard."""
+    """A factory loading a YAML behaviour, with the payload overriding its blackboard.
+
+    The file is loaded once here too, so a mistake in it (a misspelt task parameter) is a
+    ConfigError when the handler is made, at start-up, not when its first event comes."""
+    load_behavior(path)
 
     def factory(payload: dict[str, Any]) -> TaskGraph:
         return load_behavior(path, overrides=payload)

@@ -37,6 +37,7 @@ HEAD_YAW, HEAD_PITCH = "HeadYaw", "HeadPitch"
 INITIAL_POSE = "/initialpose"  # PoseStamped
 LOCALIZATION = "/amiro/localization/pose"  # PoseStamped, map frame
 GROUND_TRUTH = "/amiro/sim/ground_truth"  # PoseStamped: the simulator's true pose
+COLLISION = "/amiro/sim/collision"  # Collision: the simulated base touched something
 SLAM_POSE = "/amiro/slam/pose"  # PoseStamped
 PATH = "/amiro/navigation/path"  # Path: the planned path
 GLOBAL_LOCALIZATION = "/global_localization"  # service, as ROS amcl's std_srvs/Empty

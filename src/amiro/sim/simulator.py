@@ -119,7 +119,7 @@ class SimRobotNode(Node):
         self.pub_scan = self.create_publisher(names.SCAN, LaserScan)
         self.pub_joints = self.create_publisher(names.JOINT_STATES, JointState)
         self.pub_truth = self.create_publisher(names.GROUND_TRUTH, Pose2D)
-        self.pub_collision = self.create_publisher("/amiro/sim/collision", Collision)
+        self.pub_collision = self.create_publisher(names.COLLISION, Collision)
         self.create_timer(1.0 / self.physics_rate, self._physics)
         self.create_timer(1.0 / self.lidar.params.rate, self._scan)
 

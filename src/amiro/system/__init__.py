@@ -224,7 +224,8 @@ def build_behavior_layer(
 ) -> BehaviorLayer:
     """The engine on ``modules`` (it keeps this very dict: entries added later, before the
     runtime starts, are seen), the shipped and configured behaviours, the fall monitor on
-    ``modules["activity"]``, and the notification handler with the residents' profiles
+    ``modules["activity"]`` (its fall notifications go through the handler below), and the
+    notification handler with the residents' profiles
     (``checkpoints``: it publishes each task start, so a restarted edge can resume)."""
     engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
     handlers = HandlerRegistry(engine)
@@ -241,9 +242,7 @@ def build_behavior_layer(
         perception.people if isinstance(perception, TracksPeople) else lambda: residents
     )
     if cfg.activity.fall_detection:
-        runtime.add(
-            FallMonitorNode(modules["activity"], handlers, watch, cfg.activity.fall_period_s)
-        )
+        runtime.add(FallMonitorNode(modules["activity"], watch, cfg.activity.fall_period_s))
     profiles = {p.name: UserProfile(p.name, p.name.title(), p.language) for p in cfg.people()}
     notifications = runtime.add(
         NotificationHandlerNode(engine, handlers, profiles, checkpoints=checkpoints)

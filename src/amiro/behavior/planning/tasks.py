@@ -6,9 +6,13 @@ behaviour (see :mod:`.dispatch`); the composite ones reuse Say, Listen, Search a
 
 from __future__ import annotations
 
+from typing import Any
+
+from pydantic import Field, field_validator
+
 from amiro.behavior.planning.door_sensing import door_state_from_scan
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.task import Task, TaskContext, TaskError, TaskStatus, make_task
+from amiro.behavior.task import Task, TaskContext, TaskError, TaskParams, TaskStatus, make_task
 from amiro.core import names
 from amiro.core.bus import Subscription
 from amiro.core.messages import LaserScan
@@ -23,11 +27,23 @@ class Sequence(Task):
     type_name = "Sequence"
     cancellable = True
 
+    class Step(TaskParams):
+        type: str
+        params: dict[str, Any] | None = None
+
+    class Params(TaskParams):
+        steps: list[Sequence.Step]
+
+        @field_validator("steps")
+        @classmethod
+        def _buildable(cls, steps: list[Sequence.Step]) -> list[Sequence.Step]:
+            for step in steps:
+                make_task(step.type, step.params)  # a bad step is an error now, not later
+            return steps
+
     def start(self, ctx: TaskContext) -> None:
-        steps = self.params.get("steps")
-        if not isinstance(steps, list) or not all(isinstance(s, dict) for s in steps):
-            raise TaskError("Sequence: steps must be a list of {type, params}")
-        self.todo: list[Task] = [make_task(str(s.get("type")), s.get("params")) for s in steps]
+        steps = self.bind(ctx, self.Params).steps
+        self.todo: list[Task] = [make_task(s.type, s.params) for s in steps]
         self.current: Task | None = None
         self.detail = {"done": []}
         self._next(ctx)
@@ -66,15 +82,19 @@ class CheckDoor(Task):
     type_name = "CheckDoor"
     cancellable = True
 
+    class Params(TaskParams):
+        door: str
+        wait_open: bool = False
+        timeout_s: float = Field(1.0, ge=0)
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
+        p = self.bind(ctx, self.Params)
         kb: KnowledgeBase = ctx.module("knowledge")
-        name = str(p["door"])
-        if name not in kb.topology.doors:
-            raise TaskError(f"CheckDoor: unknown door {name!r}")
-        self.door = kb.topology.doors[name]
-        self.wait_open = bool(p.get("wait_open", False))
-        self.deadline = ctx.now() + float(p.get("timeout_s", 1.0))
+        if p.door not in kb.topology.doors:
+            raise TaskError(f"CheckDoor: unknown door {p.door!r}")
+        self.door = kb.topology.doors[p.door]
+        self.wait_open = p.wait_open
+        self.deadline = ctx.now() + p.timeout_s
         self.seen: DoorState | None = None
         self.scans: list[LaserScan] = []
         self.sub: Subscription[LaserScan] | None = ctx.bus.subscribe(

@@ -13,7 +13,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus, log
+from pydantic import Field
+
+from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus, log
 from amiro.behavior.tasks.gaze import look_at
 from amiro.core import names
 from amiro.core.bus import GoalHandle
@@ -34,17 +36,29 @@ class RecognizeActivity(Task):
     type_name = "RecognizeActivity"
     cancellable = True
 
+    class Params(TaskParams):
+        person: str
+        activity: str = "drink_water"
+        timeout_s: float = Field(30.0, ge=0)
+        confirmations: int = Field(3, ge=1)
+        period_s: float = Field(0.5, gt=0)
+        look_at: Point | None = None
+        incomplete_timeout_s: float = Field(10.0, ge=0)
+        reframe: bool = True
+        reframe_speed: float = Field(0.15, ge=0)
+        max_reframe_m: float = Field(1.0, ge=0)
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        self.person = str(p["person"])
-        self.activity = str(p.get("activity", "drink_water"))
-        self.deadline = ctx.now() + float(p.get("timeout_s", 30.0))
-        self.incomplete_deadline = ctx.now() + float(p.get("incomplete_timeout_s", 10.0))
-        self.needed = int(p.get("confirmations", 3))
-        self.period = float(p.get("period_s", 0.5))
-        self.reframe = bool(p.get("reframe", True))
-        self.speed = float(p.get("reframe_speed", 0.15))
-        self.budget = float(p.get("max_reframe_m", 1.0))
+        p = self.bind(ctx, self.Params)
+        self.person = p.person
+        self.activity = p.activity
+        self.deadline = ctx.now() + p.timeout_s
+        self.incomplete_deadline = ctx.now() + p.incomplete_timeout_s
+        self.needed = p.confirmations
+        self.period = p.period_s
+        self.reframe = p.reframe
+        self.speed = p.reframe_speed
+        self.budget = p.max_reframe_m
         self.next_look = ctx.now()
         self.streak = 0
         self.complete_seen = False
@@ -54,7 +68,7 @@ class RecognizeActivity(Task):
         self.commanded = 0.0  # m of reframing asked for so far (the budget counts this)
         self.travelled = 0.0  # m the base went, from odometry (0 when blocked)
         self.last_tick = ctx.now()
-        self.target = p.get("look_at") if isinstance(p.get("look_at"), Point) else None
+        self.target = p.look_at
         if self.reframe and not ctx.bus.has_action(names.FORWARD):
             log.warning(
                 "%s: no %s action here: watching without reframing", self.type_name, names.FORWARD

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus
 
 
 class Check(Task):
@@ -11,8 +11,14 @@ class Check(Task):
 
     type_name = "Check"
 
+    class Params(TaskParams):
+        key: str
+
+    def start(self, ctx: TaskContext) -> None:
+        self.key = self.bind(ctx, self.Params).key
+
     def update(self, ctx: TaskContext) -> TaskStatus:
-        key = str(self.params["key"])
+        key = self.key
         value = ctx.blackboard.get(key)
         self.detail = {"key": key, "value": value}
         return TaskStatus.SUCCESS if value not in (None, "", [], {}) else TaskStatus.FAILURE

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from amiro.behavior.task import Task, TaskContext, TaskError, TaskStatus
+from pydantic import Field, field_validator
+
+from amiro.behavior.task import Task, TaskContext, TaskError, TaskParams, TaskStatus
 from amiro.core import names
 from amiro.core.bus import GoalHandle, GoalStatus
 from amiro.core.messages import Point, Pose2D
@@ -32,9 +34,19 @@ class MoveTo(Task):
     type_name = "MoveTo"
     cancellable = True
 
+    class Params(TaskParams):
+        target: Any
+        approach: float = Field(0.8, ge=0)
+
+        @field_validator("target")
+        @classmethod
+        def _reachable(cls, value: Any) -> Any:
+            goal_for(value, 0.0)  # raises for something MoveTo cannot go to
+            return value
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        goal = goal_for(p["target"], float(p.get("approach", 0.8)))
+        p = self.bind(ctx, self.Params)
+        goal = goal_for(p.target, p.approach)
         self.handle: GoalHandle[MoveToGoal, Any, MoveToResult] = ctx.bus.send_goal(
             names.MOVE_TO, goal
         )
@@ -61,8 +73,11 @@ class Wait(Task):
     type_name = "Wait"
     cancellable = True
 
+    class Params(TaskParams):
+        seconds: float = Field(1.0, ge=0)
+
     def start(self, ctx: TaskContext) -> None:
-        self.until = ctx.now() + float(self.resolved(ctx).get("seconds", 1.0))
+        self.until = ctx.now() + self.bind(ctx, self.Params).seconds
 
     def update(self, ctx: TaskContext) -> TaskStatus:
         return TaskStatus.SUCCESS if ctx.now() >= self.until else TaskStatus.RUNNING

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus
+from typing import Literal
+
+from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus
 from amiro.core import names
 from amiro.core.messages import Acknowledgement
 
-ACK_STATUSES = ("done", "postponed", "failed")
+AckStatus = Literal["done", "postponed", "failed"]
 
 
 class NotifyEnvironment(Task):
@@ -15,12 +17,14 @@ class NotifyEnvironment(Task):
 
     type_name = "NotifyEnvironment"
 
+    class Params(TaskParams):
+        id: str | None = None
+        status: AckStatus = "done"
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        status = str(p.get("status", "done"))
-        if status not in ACK_STATUSES:
-            raise ValueError(f"NotifyEnvironment: status must be one of {ACK_STATUSES}")
-        ident = str(p.get("id", ctx.blackboard.get("notification_id", "")))
+        p = self.bind(ctx, self.Params)
+        status = p.status
+        ident = p.id if p.id is not None else str(ctx.blackboard.get("notification_id", ""))
         clock = ctx.module("clock")
         ack = Acknowledgement(id=ident, status=status, ts=clock.iso(ctx.now()))
         ctx.bus.publish(names.ACK, ack)

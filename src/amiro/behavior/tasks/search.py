@@ -15,7 +15,9 @@ import math
 from collections import deque
 from typing import Any
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus
+from pydantic import Field
+
+from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus
 from amiro.behavior.tasks.gaze import look_at, point_head
 from amiro.core import names
 from amiro.core.bus import GoalHandle
@@ -35,12 +37,18 @@ class Search(Task):
     type_name = "Search"
     cancellable = True
 
+    class Params(TaskParams):
+        person: str
+        dwell_s: float = Field(1.2, gt=0)
+        sightings: int = Field(2, ge=1)
+        side_steps: int = Field(2, ge=0)
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        self.person = str(p["person"])
-        self.dwell = float(p.get("dwell_s", 1.2))
-        self.needed = int(p.get("sightings", 2))
-        self.side_steps_left = int(p.get("side_steps", 2))
+        p = self.bind(ctx, self.Params)
+        self.person = p.person
+        self.dwell = p.dwell_s
+        self.needed = p.sightings
+        self.side_steps_left = p.side_steps
         self.world = ctx.module("world")
         self.sightings: list[Point] = []
         self.visited: set[str] = set()

@@ -2,19 +2,36 @@
 
 from __future__ import annotations
 
-from typing import Any
+from pydantic import Field, model_validator
 
-from amiro.behavior.task import Task, TaskContext, TaskStatus
+from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus
 from amiro.core import names
 from amiro.core.bus import Subscription
 from amiro.core.messages import SpeechHeard, String
 from amiro.dialogue.phrases import phrase
 
 
-def _text(params: dict[str, Any], ctx: TaskContext, lang: str) -> str:
-    if "text" in params:
-        return str(params["text"])
-    return phrase(str(params["phrase"]), lang, ctx.blackboard)
+class TextParams(TaskParams):
+    """What to say or show: a ``phrase`` template key or a literal ``text``."""
+
+    phrase: str | None = None
+    text: str | None = None
+    lang: str | None = None
+
+    @model_validator(mode="after")
+    def _something_to_say(self) -> TextParams:
+        if self.phrase is None and self.text is None:
+            raise ValueError("needs a 'phrase' or a 'text' parameter")
+        return self
+
+    def words(self, ctx: TaskContext) -> tuple[str, str]:
+        """The text (``text`` wins over ``phrase``) and its language (default: blackboard
+        ``lang``)."""
+        lang = self.lang if self.lang is not None else str(ctx.blackboard.get("lang", "en"))
+        if self.text is not None:
+            return self.text, lang
+        assert self.phrase is not None  # the validator above
+        return phrase(self.phrase, lang, ctx.blackboard), lang
 
 
 class Say(Task):
@@ -27,12 +44,15 @@ class Say(Task):
 
     type_name = "Say"
 
+    class Params(TextParams):
+        act: str | None = None
+        to: str | None = None
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        lang = str(p.get("lang", ctx.blackboard.get("lang", "en")))
-        text = _text(p, ctx, lang)
-        act = str(p.get("act", p.get("phrase", "")))
-        addressee = str(p.get("to", ctx.blackboard.get("person", "")))
+        p = self.bind(ctx, self.Params)
+        text, lang = p.words(ctx)
+        act = p.act if p.act is not None else (p.phrase or "")
+        addressee = p.to if p.to is not None else str(ctx.blackboard.get("person", ""))
         duration = ctx.module("speech").say(text, lang, act, addressee)
         ctx.bus.publish(names.DISPLAY, String(text))
         self._until = ctx.now() + duration
@@ -48,10 +68,11 @@ class Display(Task):
 
     type_name = "Display"
 
+    class Params(TextParams):
+        pass
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        lang = str(p.get("lang", ctx.blackboard.get("lang", "en")))
-        text = _text(p, ctx, lang)
+        text, _ = self.bind(ctx, self.Params).words(ctx)
         ctx.bus.publish(names.DISPLAY, String(text))
         self.detail = {"text": text}
 
@@ -69,10 +90,14 @@ class Listen(Task):
 
     type_name = "Listen"
 
+    class Params(TaskParams):
+        expect: tuple[str, ...] = ("affirm",)
+        timeout_s: float = Field(10.0, ge=0)
+
     def start(self, ctx: TaskContext) -> None:
-        p = self.resolved(ctx)
-        self.expect = [str(x) for x in p.get("expect", ["affirm"])]
-        self.deadline = ctx.now() + float(p.get("timeout_s", 10.0))
+        p = self.bind(ctx, self.Params)
+        self.expect = p.expect
+        self.deadline = ctx.now() + p.timeout_s
         self.heard: list[SpeechHeard] = []
         self.sub: Subscription[SpeechHeard] | None = ctx.bus.subscribe(
             names.HEARD, SpeechHeard, self.heard.append, depth=5
