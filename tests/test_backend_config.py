@@ -109,7 +109,7 @@ def test_a_plugins_people_finder_is_configured_and_built_by_name(
     cfg = load(SystemConfig, write_config(tmp_path / "plugin.yaml", data))
     system = build_system(cfg)
     try:
-        finder = system.engine.modules["perception"]
+        finder = system.engine.modules.perception
         assert type(finder).__name__ == "StillFinder"
         (ana,) = finder.look()
         assert ana.name == "ana" and ana.position.x == 1.5

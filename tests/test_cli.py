@@ -96,7 +96,7 @@ def test_help_does_not_import_heavy_packages(heavy: str, loaded_by_help: set[str
 
 
 def test_delivery_engines_are_the_planners() -> None:
-    from amiro.behavior.planning.planner import Engine
+    from amiro.behavior.planning.config import Engine
 
     assert get_args(Engine) == ENGINES
 

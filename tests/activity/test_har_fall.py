@@ -13,6 +13,7 @@ from amiro.activity.ports import ActivityReading
 from amiro.behavior.engine import BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry
 from amiro.behavior.loader import load_behavior, load_behavior_data, loads_behavior
+from amiro.behavior.modules import Modules
 from amiro.behavior.notifications import NotificationHandlerNode
 from amiro.core import names
 from amiro.core.clock import SimClock
@@ -50,7 +51,7 @@ def _home(
     """The monitor, and (``handler``) the notification handler turning its notifications
     into a 3 s fall behaviour on the engine."""
     runtime = Runtime(SimClock())
-    engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules={}))
+    engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules=Modules()))
     handlers = HandlerRegistry(engine)
     handlers.register("fall", lambda p: load_behavior_data(_waiting("fall", 1, 3.0), overrides=p))
     if handler:
@@ -179,7 +180,7 @@ def test_the_fall_behaviour_acknowledges_its_notification(
 ) -> None:
     """From its question on, the shipped fall behaviour answers the notification it runs for."""
     runtime = Runtime(SimClock())
-    modules = {"clock": runtime.clock, "nlu": AffirmNLU(), "speech": OneSecondSpeech()}
+    modules = Modules(clock=runtime.clock, nlu=AffirmNLU(), speech=OneSecondSpeech())
     engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules=modules))
     handlers = HandlerRegistry(engine)
     text = shipped_behavior("fall").read_text(encoding="utf-8")

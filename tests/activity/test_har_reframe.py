@@ -9,6 +9,7 @@ import amiro.behavior.tasks  # noqa: F401 - registers the task types
 from amiro.activity.ports import ActivityReading
 from amiro.behavior.engine import BehaviorEngine, EngineConfig, GraphRun
 from amiro.behavior.graph import TaskGraph
+from amiro.behavior.modules import Modules
 from amiro.behavior.task import make_task
 from amiro.core.clock import SimClock
 from amiro.core.messages import Pose2D
@@ -64,7 +65,7 @@ def _recognise(
     recognizer = FramedRecognizer(
         SkeletonCamera(sim, np.random.default_rng(0)), box_range, complete
     )
-    modules = {"activity": recognizer, "navigation": Odometry(sim), "world": sim.world}
+    modules = Modules(activity=recognizer, navigation=Odometry(sim), world=sim.world)
     add_motion(runtime, NavigationConfig())  # the forward action the reframing drives with
     engine = runtime.add(BehaviorEngine(config=EngineConfig(), modules=modules))
     runtime.start()

@@ -12,6 +12,7 @@ from amiro.behavior import (
     TaskParams,
     TaskStatus,
 )
+from amiro.behavior.modules import Modules
 from amiro.core.clock import SimClock
 from amiro.core.runtime import Runtime
 
@@ -75,14 +76,14 @@ class FakeBoom(Task):
         if self.params["where"] == "start":
             raise RuntimeError("boom in start")
         if self.params["where"] == "module":
-            ctx.module("navigation")
+            ctx.need(ctx.modules.navigation, "navigation")
 
     def update(self, ctx: TaskContext) -> TaskStatus:
         raise RuntimeError("boom in update")
 
 
 def make_engine(
-    preemption: bool = True, tick_s: float = 0.05, modules: dict[str, Any] | None = None
+    preemption: bool = True, tick_s: float = 0.05, modules: Modules | None = None
 ) -> tuple[Runtime, BehaviorEngine]:
     runtime = Runtime(SimClock())
     engine = BehaviorEngine(

@@ -10,6 +10,7 @@ from behavior_fakes import FakeWork, run_all
 
 from amiro.behavior import BehaviorEngine, End, EngineConfig, HandlerRegistry, TaskGraph
 from amiro.behavior.checkpoint import carried, with_checkpoint
+from amiro.behavior.modules import Modules
 from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
 from amiro.core import names
 from amiro.core.clock import SimClock
@@ -54,7 +55,7 @@ class Edge:
     def __init__(self) -> None:
         self.runtime = Runtime(SimClock())
         self.engine = self.runtime.add(
-            BehaviorEngine(config=EngineConfig(), modules={"navigation": FakeNavigation()})
+            BehaviorEngine(config=EngineConfig(), modules=Modules(navigation=FakeNavigation()))
         )
         handlers = HandlerRegistry(self.engine)
         handlers.register("visit", visit)

@@ -49,6 +49,6 @@ def test_hydration_postpone_branch_with_the_nlu() -> None:
 def test_hydration_in_english_through_real_audio() -> None:
     system, outcome = _run("en", DialogueConfig(asr=AsrConfig(sim_audio=True)))
     assert outcome == "completed"
-    loop = system.engine.modules["nlu"]
+    loop = system.engine.modules.nlu
     assert isinstance(loop, AudioLoopUnderstanding)
     assert loop.heard and all(recognised for _, recognised in loop.heard)

@@ -12,6 +12,7 @@ from env_broker import Peer, wait_for
 from amiro.behavior.engine import BehaviorEngine
 from amiro.behavior.graph import TaskGraph
 from amiro.behavior.handlers import HandlerRegistry
+from amiro.behavior.modules import Modules
 from amiro.behavior.notifications import NotificationHandlerNode
 from amiro.behavior.tasks.notify import NotifyEnvironment
 from amiro.core.clock import SimClock
@@ -81,7 +82,7 @@ def test_burst_of_1000_notifications_runs_in_priority_order_none_lost(
     broker: str, peer_factory: Callable[[list[str]], Peer]
 ) -> None:
     rt, bridge = bridge_runtime(broker)
-    engine = rt.add(BehaviorEngine(modules={"clock": rt.clock}))
+    engine = rt.add(BehaviorEngine(modules=Modules(clock=rt.clock)))
     handlers = HandlerRegistry(engine)
     handlers.register(
         "check",

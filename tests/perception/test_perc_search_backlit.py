@@ -38,7 +38,7 @@ def run_search(side_steps: int) -> dict[str, object]:
         }
     )
     system = build_system(cfg)
-    system.engine.modules["perception"] = build_people_finder(
+    system.engine.modules.perception = build_people_finder(
         system.sim, np.random.default_rng(5), PerceptionConfig()
     )
     system.start()

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 from up_pyperplan.engine import EngineImpl  # type: ignore[import-untyped]
 
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.behavior.planning.domain import home_domain
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, solve
+from amiro.behavior.planning.planner import HomePlanner, solve
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.behavior.planning.topology import grid_topology, topology_from_world
 from amiro.home.world import World, default_home_path

@@ -8,10 +8,11 @@ import sys
 import pytest
 from up_kairos.writer import KairosWriter  # type: ignore[import-untyped]
 
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.behavior.planning.domain import home_domain
 from amiro.behavior.planning.kairos_engine import WrittenProblem
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.planner import HomePlanner, PlanningConfig
+from amiro.behavior.planning.planner import HomePlanner
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError

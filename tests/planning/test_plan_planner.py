@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import pytest
 
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.planner import HomePlanner, PlanningConfig
+from amiro.behavior.planning.planner import HomePlanner
 from amiro.behavior.planning.problem import Goal, RobotState
 from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError

@@ -35,7 +35,7 @@ def _edge(cfg: SystemConfig) -> tuple[Runtime, dict[str, Any]]:
     parts = build_edge_role(runtime, "edge", NodeConfig(role="edge"), cfg)
     engine = runtime.node("behavior")
     assert isinstance(engine, BehaviorEngine)
-    return runtime, {**engine.modules, "summary": parts.summary()}
+    return runtime, {**vars(engine.modules), "summary": parts.summary()}
 
 
 def test_the_edge_runs_the_real_modules_by_default() -> None:
@@ -55,7 +55,7 @@ def test_listen_asks_the_cloud_when_it_serves_understanding() -> None:
     build_edge_role(runtime, "edge", node, scenario_config(HydrationOptions(seed=1)))
     engine = runtime.node("behavior")
     assert isinstance(engine, BehaviorEngine)
-    assert isinstance(engine.modules["nlu"], RemoteUnderstanding)
+    assert isinstance(engine.modules.nlu, RemoteUnderstanding)
 
 
 def test_oracles_run_on_the_edge_only_when_configured() -> None:

@@ -71,7 +71,7 @@ def test_the_edge_publishes_its_perception_tracks_and_the_cloud_hears_them() -> 
     build_edge_role(runtime, "edge", NodeConfig(role="edge"), scenario_config(HydrationOptions()))
     publisher, engine = runtime.node("tracked_people"), runtime.node("behavior")
     assert isinstance(publisher, TrackedPeoplePublisher) and isinstance(engine, BehaviorEngine)
-    assert publisher.tracker is engine.modules["perception"].tracker
+    assert publisher.tracker is engine.modules.perception.tracker
 
 
 def test_an_edge_without_a_tracker_publishes_no_people() -> None:

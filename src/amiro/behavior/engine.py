@@ -27,6 +27,7 @@ from amiro.behavior.checkpoint import (
     portable,
 )
 from amiro.behavior.graph import End, TaskGraph
+from amiro.behavior.modules import Modules
 from amiro.behavior.task import (
     Task,
     TaskContext,
@@ -130,11 +131,11 @@ class BehaviorEngine(Node):
         self,
         name: str = "behavior",
         config: EngineConfig | None = None,
-        modules: dict[str, Any] | None = None,
+        modules: Modules | None = None,
     ) -> None:
         super().__init__(name)
         self.config = config or EngineConfig()
-        self.modules: dict[str, Any] = modules if modules is not None else {}
+        self.modules = modules if modules is not None else Modules()
         self.events: list[BehaviorEvent] = []
         self.records: list[TaskRecord] = []
         self.runs: dict[str, GraphRun] = {}

@@ -141,7 +141,8 @@ class NotificationHandlerNode(Node):
         checkpoint = None if ident is None else self.engine.checkpoint(self.runs[ident].id)
         if checkpoint is None:
             return
-        pose = getattr(self.engine.modules.get("navigation"), "pose", None)
+        nav = self.engine.modules.navigation
+        pose = nav.pose if nav is not None else None
         if isinstance(pose, Pose2D):
             checkpoint = replace(checkpoint, robot_pose=pose, robot_odom=self._odom)
         detail = {"id": ident, "checkpoint": checkpoint.to_dict()}

@@ -19,12 +19,17 @@ import enum
 import logging
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
 from amiro.core.bus import Bus
 from amiro.core.messages import BehaviorEvent
+
+if TYPE_CHECKING:
+    from amiro.behavior.modules import Modules
+
+T = TypeVar("T")
 
 log = logging.getLogger("amiro.behavior")
 
@@ -43,24 +48,23 @@ class TaskError(ValueError):
 class TaskContext:
     """What a running task may use: the bus, the clock, its graph's blackboard, the modules.
 
-    ``modules`` maps a module name ("robot", "navigation", "perception", "activity",
-    "dialogue", "environment") to the object serving it, so tasks depend on ports, not on
-    concrete backends.
+    ``modules`` holds the modules running in this process, typed by their ports, so tasks
+    depend on ports, not on concrete backends.
     """
 
     bus: Bus
     now: Callable[[], float]
     blackboard: dict[str, Any]
-    modules: dict[str, Any]
+    modules: Modules
     emit: Callable[[BehaviorEvent], None]
     graph: str = ""
     task_id: str = ""
 
-    def module(self, name: str) -> Any:
-        try:
-            return self.modules[name]
-        except KeyError:
-            raise TaskError(f"no '{name}' module is running for task {self.task_id}") from None
+    def need(self, module: T | None, name: str) -> T:
+        """``module`` (one of ``self.modules``), or a TaskError when it is not running here."""
+        if module is None:
+            raise TaskError(f"no '{name}' module is running for task {self.task_id}")
+        return module
 
     def event(self, type_: str, **detail: Any) -> None:
         self.emit(BehaviorEvent(self.now(), type_, self.graph, self.task_id, dict(detail)))

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, cast
 from amiro.commands.support import add_command, add_group, emit_report
 
 if TYPE_CHECKING:
-    from amiro.behavior.planning.planner import Engine, PlanningConfig
+    from amiro.behavior.planning.config import Engine, PlanningConfig
     from amiro.commands.support import Subcommands
 
 ENGINES = ("kairos", "pyperplan", "fast-downward")
@@ -57,7 +57,7 @@ def check_engine(engine: str) -> Engine:
 
 
 def _config(args: argparse.Namespace) -> PlanningConfig:
-    from amiro.behavior.planning.planner import PlanningConfig
+    from amiro.behavior.planning.config import PlanningConfig
     from amiro.core.config import parse
 
     data = {"engine": check_engine(args.engine), "temporal": args.temporal}

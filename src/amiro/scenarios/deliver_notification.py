@@ -13,13 +13,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.behavior.planning.config import Engine
 from amiro.behavior.planning.dispatch import OPEN_DOOR_REQUEST
 from amiro.behavior.planning.executive import PlanExecutive
 from amiro.behavior.planning.knowledge import KnowledgeBase
-from amiro.behavior.planning.knowledge_node import KnowledgeNode
-from amiro.behavior.planning.planner import Engine, HomePlanner, PlanningConfig
 from amiro.behavior.planning.problem import Goal
-from amiro.behavior.planning.topology import topology_from_world
 from amiro.core.config import ConfigError
 from amiro.dialogue.phrases import check_language, phrase
 from amiro.scenarios.common import base_config_data, run_scenario
@@ -60,6 +58,12 @@ def scenario_config(opts: DeliveryOptions) -> SystemConfig:
     sim["doors"] = {**sim.get("doors", {}), **dict.fromkeys(opts.closed_doors, False)}
     env = data.setdefault("environment", {})
     env["rules"] = []  # no hydration alert in this scenario
+    behavior = data.setdefault("behavior", {})
+    behavior["planner"] = {
+        **behavior.get("planner", {}),
+        "engine": opts.engine,
+        "people": dict(KNOWN_ROOMS),
+    }
     return SystemConfig.model_validate(data)
 
 
@@ -77,22 +81,9 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
             raise ConfigError(
                 f"unknown door(s) {', '.join(unknown)} (doors: {', '.join(world.doors)})"
             )
-        kb = KnowledgeBase(topology_from_world(world), dict(KNOWN_ROOMS))
-        system.engine.modules["knowledge"] = kb
-
-        def pose() -> Any:
-            return system.navigation.pose
-
-        system.runtime.add(KnowledgeNode(kb, pose))
-        executive = system.runtime.add(
-            PlanExecutive(
-                HomePlanner(PlanningConfig(engine=opts.engine)),
-                kb,
-                system.engine,
-                pose,
-                world.room_at,
-            )
-        )
+        executive = system.planner
+        kb = system.engine.modules.knowledge
+        assert executive is not None and kb is not None  # behavior.planner is set above
         goals = [Goal("notified", PERSON)]
         if opts.check_activity is not None:
             goals.append(Goal("activity_checked", PERSON))

@@ -25,7 +25,9 @@ from amiro.activity.ports import ActivityRecognizer
 from amiro.activity.stack import build_activity_recognizer
 from amiro.behavior.engine import BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry, yaml_handler
+from amiro.behavior.modules import Modules
 from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.core.clock import Clock, SimClock, WallClock
 from amiro.core.config import ConfigError, Section
 from amiro.core.gridmap import load_map
@@ -58,8 +60,11 @@ from amiro.sim.simulator import Simulation
 from amiro.sim.skeletons import SkeletonCamera
 from amiro.system.dialogue_sources import environment_sources
 
-if TYPE_CHECKING:  # these load onnxruntime / OpenCV: only when their backend is chosen
+if TYPE_CHECKING:
     from amiro.activity.recognizer import SkeletonSource
+    from amiro.behavior.planning.executive import (
+        PlanExecutive,  # these load onnxruntime / OpenCV: only when their backend is chosen
+    )
     from amiro.perception.camera_finder import CameraPeopleFinder
 
 SHIPPED_BEHAVIORS = ("hydration", "fall", "go_to")
@@ -69,8 +74,19 @@ def shipped_behavior(name: str) -> Path:
     return Path(str(resources.files("amiro").joinpath(f"data/behaviors/{name}.yaml")))
 
 
+class PlannerSection(PlanningConfig):
+    """``behavior.planner``: the PDDL planning executive, on when the section is present."""
+
+    people: dict[str, str] = Field(
+        default_factory=dict, description="where each person is believed to be (person -> room)"
+    )
+
+
 class BehaviorConfig(Section):
     engine: EngineConfig = Field(default_factory=EngineConfig)
+    planner: PlannerSection | None = Field(
+        default=None, description="declarative planning with re-planning (docs/planning.md)"
+    )
     handlers: dict[str, Path] = Field(
         default_factory=dict, description="notification kind -> behaviour YAML"
     )
@@ -129,6 +145,7 @@ class System:
     dialogue: Dialogue
     environment: Environment
     camera_people: CameraPeopleFinder | None = None  # a real robot's camera tracks
+    planner: PlanExecutive | None = None  # behavior.planner: goals become planned behaviours
 
     @property
     def sim(self) -> Simulation | None:
@@ -220,11 +237,11 @@ class BehaviorLayer:
 
 
 def build_behavior_layer(
-    runtime: Runtime, cfg: SystemConfig, modules: dict[str, Any], checkpoints: bool = False
+    runtime: Runtime, cfg: SystemConfig, modules: Modules, checkpoints: bool = False
 ) -> BehaviorLayer:
-    """The engine on ``modules`` (it keeps this very dict: entries added later, before the
+    """The engine on ``modules`` (it keeps this very object: modules set later, before the
     runtime starts, are seen), the shipped and configured behaviours, the fall monitor on
-    ``modules["activity"]`` (its fall notifications go through the handler below), and the
+    ``modules.activity`` (its fall notifications go through the handler below), and the
     notification handler with the residents' profiles
     (``checkpoints``: it publishes each task start, so a restarted edge can resume)."""
     engine = runtime.add(BehaviorEngine(config=cfg.behavior.engine, modules=modules))
@@ -237,12 +254,12 @@ def build_behavior_layer(
         handlers.register(kind, yaml_handler(path), replace=True)
     residents = [p.name for p in cfg.people()]
     # A camera robot watches the people it tracks; the simulator names its residents.
-    perception = modules["perception"]
+    perception = modules.perception
     watch: Callable[[], list[str]] = (
         perception.people if isinstance(perception, TracksPeople) else lambda: residents
     )
-    if cfg.activity.fall_detection:
-        runtime.add(FallMonitorNode(modules["activity"], watch, cfg.activity.fall_period_s))
+    if cfg.activity.fall_detection and modules.activity is not None:
+        runtime.add(FallMonitorNode(modules.activity, watch, cfg.activity.fall_period_s))
     profiles = {p.name: UserProfile(p.name, p.name.title(), p.language) for p in cfg.people()}
     notifications = runtime.add(
         NotificationHandlerNode(engine, handlers, profiles, checkpoints=checkpoints)
@@ -314,6 +331,33 @@ def add_motion(runtime: Runtime, cfg: NavigationConfig) -> None:
     runtime.add(VelocityMuxNode())
 
 
+def add_planner(
+    runtime: Runtime,
+    cfg: PlannerSection,
+    world: World,
+    engine: BehaviorEngine,
+    navigation: MoveToNode,
+) -> PlanExecutive:
+    """The planning executive on a knowledge base of ``world``'s rooms and doors, kept up to
+    date from the sensors (doors from the lidar, people from perception).  Imported here:
+    the planners load unified-planning, which a system without planning does not need."""
+    from amiro.behavior.planning.executive import PlanExecutive
+    from amiro.behavior.planning.knowledge import KnowledgeBase
+    from amiro.behavior.planning.knowledge_node import KnowledgeNode
+    from amiro.behavior.planning.planner import HomePlanner
+    from amiro.behavior.planning.topology import topology_from_world
+
+    kb = KnowledgeBase(topology_from_world(world), dict(cfg.people))
+    engine.modules.knowledge = kb
+
+    def pose() -> Pose2D | None:
+        return navigation.pose
+
+    runtime.add(KnowledgeNode(kb, pose))
+    planning = PlanningConfig.model_validate(cfg.model_dump(exclude={"people"}))
+    return runtime.add(PlanExecutive(HomePlanner(planning), kb, engine, pose, world.room_at))
+
+
 def _assemble(
     cfg: SystemConfig,
     runtime: Runtime,
@@ -324,14 +368,19 @@ def _assemble(
 ) -> System:
     """The behaviours, the smart environment and the dialogue on the robot's modules."""
     rooms = list(world.home.rooms)
-    modules: dict[str, Any] = {
-        "clock": runtime.clock,
-        "world": world,
-        "navigation": navigation,
-        "perception": senses.perception,
-        "activity": senses.activity,
-    }
+    modules = Modules(
+        clock=runtime.clock,
+        world=world,
+        navigation=navigation,
+        perception=senses.perception,
+        activity=senses.activity,
+    )
     layer = build_behavior_layer(runtime, cfg, modules)
+    planner = (
+        None
+        if cfg.behavior.planner is None
+        else add_planner(runtime, cfg.behavior.planner, world, layer.engine, navigation)
+    )
     sensors = runtime.add(
         SimulatedSensorsNode(rooms, cfg.environment.sensors, cfg.environment.home_id)
     )
@@ -340,7 +389,7 @@ def _assemble(
     sources = environment_sources(runtime, environment, rooms)
     voices = household_voices(cfg.people())
     dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=layer.submit, sources=sources)
-    modules.update({"speech": dialogue.speech, "nlu": dialogue.nlu})
+    modules.speech, modules.nlu = dialogue.speech, dialogue.nlu
     return System(
         cfg,
         runtime,
@@ -354,4 +403,5 @@ def _assemble(
         rules,
         dialogue,
         environment,
+        planner=planner,
     )

@@ -11,14 +11,23 @@ from typing import TYPE_CHECKING
 from amiro.core.lazy import lazy_getattr
 
 if TYPE_CHECKING:
+    from amiro.behavior.planning.config import PlanningConfig
     from amiro.behavior.planning.executive import PlanExecutive
     from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
     from amiro.behavior.planning.knowledge_node import KnowledgeNode
-    from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, PlanOutcome, PlanStep
+    from amiro.behavior.planning.planner import HomePlanner, PlanOutcome, PlanStep
     from amiro.behavior.planning.problem import Goal, RobotState
     from amiro.behavior.planning.topology import Topology, grid_topology, topology_from_world
 
-_SUBMODULES = ("executive", "knowledge", "knowledge_node", "planner", "problem", "topology")
+_SUBMODULES = (
+    "config",
+    "executive",
+    "knowledge",
+    "knowledge_node",
+    "planner",
+    "problem",
+    "topology",
+)
 
 __all__ = [
     "DoorState",

@@ -13,8 +13,9 @@ from typing import Any
 
 import numpy as np
 
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
-from amiro.behavior.planning.planner import HomePlanner, PlanningConfig, PlanOutcome
+from amiro.behavior.planning.planner import HomePlanner, PlanOutcome
 from amiro.behavior.planning.problem import Goal, RobotState
 from amiro.behavior.planning.topology import grid_topology
 

@@ -13,22 +13,21 @@ from __future__ import annotations
 import importlib
 import time
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any
 
-from pydantic import Field, model_validator
 from unified_planning.engines import PlanGenerationResultStatus as Status
 from unified_planning.model import Problem
 from unified_planning.plans import SequentialPlan, TimeTriggeredPlan
 from unified_planning.shortcuts import OneshotPlanner
 
+from amiro.behavior.planning.config import PlanningConfig
 from amiro.behavior.planning.domain import home_domain
 from amiro.behavior.planning.environment import add_engine, planning_environment
 from amiro.behavior.planning.explain import explain_no_plan
 from amiro.behavior.planning.knowledge import KnowledgeBase
 from amiro.behavior.planning.problem import Goal, RobotState, make_problem
-from amiro.core.config import ConfigError, Section
+from amiro.core.config import ConfigError
 
-Engine = Literal["kairos", "pyperplan", "fast-downward"]
 _PACKAGES = {
     "kairos": "up_kairos",
     "pyperplan": "up_pyperplan",
@@ -42,20 +41,6 @@ _UP_ENGINES = {
     "fast-downward": ("fast-downward", "up_fast_downward", "FastDownwardPDDLPlanner"),
 }
 _SOLVED = (Status.SOLVED_SATISFICING, Status.SOLVED_OPTIMALLY)
-
-
-class PlanningConfig(Section):
-    engine: Engine = "kairos"
-    temporal: bool = Field(default=False, description="durative actions (engine kairos)")
-    timeout_s: float = Field(default=10.0, gt=0.0)
-    speed_mps: float = Field(default=0.35, gt=0.0, description="for durations from distances")
-    max_replans: int = Field(default=6, ge=0)
-
-    @model_validator(mode="after")
-    def _temporal_engine(self) -> PlanningConfig:
-        if self.temporal and self.engine != "kairos":
-            raise ValueError(f"temporal planning needs engine kairos, not {self.engine}")
-        return self
 
 
 @dataclass(frozen=True, slots=True)

@@ -11,7 +11,7 @@ from typing import Any
 from pydantic import Field, field_validator
 
 from amiro.behavior.planning.door_sensing import door_state_from_scan
-from amiro.behavior.planning.knowledge import DoorState, KnowledgeBase
+from amiro.behavior.planning.knowledge import DoorState
 from amiro.behavior.task import Task, TaskContext, TaskError, TaskParams, TaskStatus, make_task
 from amiro.core import names
 from amiro.core.bus import Subscription
@@ -89,7 +89,7 @@ class CheckDoor(Task):
 
     def start(self, ctx: TaskContext) -> None:
         p = self.bind(ctx, self.Params)
-        kb: KnowledgeBase = ctx.module("knowledge")
+        kb = ctx.need(ctx.modules.knowledge, "knowledge")
         if p.door not in kb.topology.doors:
             raise TaskError(f"CheckDoor: unknown door {p.door!r}")
         self.door = kb.topology.doors[p.door]
@@ -107,7 +107,7 @@ class CheckDoor(Task):
             self.sub = None
 
     def update(self, ctx: TaskContext) -> TaskStatus:
-        pose = ctx.module("navigation").pose
+        pose = ctx.need(ctx.modules.navigation, "navigation").pose
         if self.scans and pose is not None:
             state = door_state_from_scan(self.scans[-1], pose, self.door.a, self.door.b)
             self.scans.clear()

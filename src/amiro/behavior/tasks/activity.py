@@ -82,7 +82,7 @@ class RecognizeActivity(Task):
         self._drive(ctx, now)
         if now >= self.next_look:
             self.next_look = now + self.period
-            reading = ctx.module("activity").observe(self.person)
+            reading = ctx.need(ctx.modules.activity, "activity").observe(self.person)
             self.complete_seen |= reading.skeleton_complete
             if reading.label is not None:
                 self.labels[reading.label] = self.labels.get(reading.label, 0) + 1
@@ -117,7 +117,7 @@ class RecognizeActivity(Task):
     # --- framing --------------------------------------------------------------------------
     def _framing_direction(self, ctx: TaskContext, box: float | None, clipped: bool) -> int:
         """Backwards when the box is too big or cut, forwards when too small, else still."""
-        box_range = getattr(ctx.module("activity"), "box_range", None)
+        box_range = getattr(ctx.need(ctx.modules.activity, "activity"), "box_range", None)
         if not self.reframe or box_range is None or box is None or self.commanded >= self.budget:
             return 0
         low, high = box_range
@@ -125,8 +125,8 @@ class RecognizeActivity(Task):
         return want if want != 0 and self._free_ahead(ctx, want) else 0
 
     def _free_ahead(self, ctx: TaskContext, direction: int, look: float = 0.3) -> bool:
-        pose = ctx.module("navigation").pose
-        world = ctx.modules.get("world")
+        pose = ctx.need(ctx.modules.navigation, "navigation").pose
+        world = ctx.modules.world
         if pose is None or world is None:
             return False
         x = pose.x + direction * look * math.cos(pose.theta)
@@ -147,7 +147,8 @@ class RecognizeActivity(Task):
     def _drive(self, ctx: TaskContext, now: float) -> None:
         dt, self.last_tick = now - self.last_tick, now
         # the navigation module's odometry velocity (vx, vy, wz): what the wheels did
-        velocity = getattr(ctx.modules.get("navigation"), "velocity", (0.0, 0.0, 0.0))
+        nav = ctx.modules.navigation
+        velocity = nav.velocity if nav is not None else (0.0, 0.0, 0.0)
         self.travelled += abs(float(velocity[0])) * dt
         if self.direction == 0:
             return

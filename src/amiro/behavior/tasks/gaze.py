@@ -21,7 +21,7 @@ def point_head(ctx: TaskContext, yaw: float, pitch: float = 0.0) -> None:
 
 def look_at(ctx: TaskContext, target: Point, camera_height: float = CAMERA_HEIGHT_M) -> bool:
     """Turn the head towards a point of the map; False when the robot's pose is unknown."""
-    pose = ctx.module("navigation").pose
+    pose = ctx.need(ctx.modules.navigation, "navigation").pose
     if pose is None:
         return False
     dx, dy = target.x - pose.x, target.y - pose.y

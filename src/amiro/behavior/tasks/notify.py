@@ -25,7 +25,7 @@ class NotifyEnvironment(Task):
         p = self.bind(ctx, self.Params)
         status = p.status
         ident = p.id if p.id is not None else str(ctx.blackboard.get("notification_id", ""))
-        clock = ctx.module("clock")
+        clock = ctx.need(ctx.modules.clock, "clock")
         ack = Acknowledgement(id=ident, status=status, ts=clock.iso(ctx.now()))
         ctx.bus.publish(names.ACK, ack)
         ctx.blackboard["acked"] = status

@@ -49,7 +49,7 @@ class Search(Task):
         self.dwell = p.dwell_s
         self.needed = p.sightings
         self.side_steps_left = p.side_steps
-        self.world = ctx.module("world")
+        self.world = ctx.need(ctx.modules.world, "world")
         self.sightings: list[Point] = []
         self.visited: set[str] = set()
         self.steps: deque[tuple[str, Any]] = deque()
@@ -59,7 +59,7 @@ class Search(Task):
         self.detail = {"rooms": []}
 
     def _pose(self, ctx: TaskContext) -> Pose2D | None:
-        pose: Pose2D | None = ctx.module("navigation").pose
+        pose: Pose2D | None = ctx.need(ctx.modules.navigation, "navigation").pose
         return pose
 
     def _look_around(self, ctx: TaskContext, turn: bool) -> None:
@@ -148,7 +148,7 @@ class Search(Task):
 
     def update(self, ctx: TaskContext) -> TaskStatus:
         backlit: Point | None = None
-        for seen in ctx.module("perception").look():
+        for seen in ctx.need(ctx.modules.perception, "perception").look():
             if seen.name == self.person:
                 self.sightings.append(seen.position)
             elif seen.name is None and getattr(seen, "face_backlit", False):

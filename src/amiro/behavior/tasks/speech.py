@@ -53,7 +53,7 @@ class Say(Task):
         text, lang = p.words(ctx)
         act = p.act if p.act is not None else (p.phrase or "")
         addressee = p.to if p.to is not None else str(ctx.blackboard.get("person", ""))
-        duration = ctx.module("speech").say(text, lang, act, addressee)
+        duration = ctx.need(ctx.modules.speech, "speech").say(text, lang, act, addressee)
         ctx.bus.publish(names.DISPLAY, String(text))
         self._until = ctx.now() + duration
         self.detail = {"text": text, "lang": lang}
@@ -110,7 +110,7 @@ class Listen(Task):
 
     def update(self, ctx: TaskContext) -> TaskStatus:
         for heard in self.heard:
-            intent, confidence = ctx.module("nlu").intent(heard)
+            intent, confidence = ctx.need(ctx.modules.nlu, "nlu").intent(heard)
             ctx.blackboard["last_intent"] = intent
             self.detail = {"heard": heard.text, "intent": intent, "confidence": confidence}
             ctx.event("heard", text=heard.text, intent=intent, speaker=heard.speaker)
