@@ -8,12 +8,12 @@ for the laser, odometry and base, NAOqi for multilingual speech, the tablet, hea
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
-from amiro.core import registry
 from amiro.core.config import Section
+from amiro.core.registry import backend_name
 from amiro.robot import adapter as _adapters  # noqa: F401 - registers the robot adapters
 from amiro.ros2.context import RosSection
 
@@ -31,18 +31,12 @@ class NaoqiConnection(Section):
 
 
 class RobotConfig(Section):
-    adapter: str = Field(default="sim", description="a registered robot adapter (sim, ros2, naoqi)")
+    adapter: Annotated[str, backend_name("robot")] = Field(
+        default="sim", description="a registered robot adapter (sim, ros2, naoqi)"
+    )
     profile: str = Field(default="pepper", description="shipped profile name or YAML file")
     ros: RosSection = Field(default_factory=RosSection)
     naoqi: NaoqiConnection | None = None
-
-    @field_validator("adapter")
-    @classmethod
-    def _registered(cls, name: str) -> str:
-        choices = registry.names("robot")
-        if name not in choices:
-            raise ValueError(f"unknown robot adapter '{name}' (choices: {', '.join(choices)})")
-        return name
 
     @model_validator(mode="after")
     def _consistent(self) -> RobotConfig:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Self
 
 from amiro.core.runtime import Runtime
 from amiro.sim.simulator import Simulation, build_sim
@@ -17,7 +17,7 @@ class SimAdapter:
     simulation: Simulation
 
     @classmethod
-    def build(cls, runtime: Runtime, config: Any) -> SimAdapter:
+    def build(cls, runtime: Runtime, config: Any) -> Self:
         """The simulator built from ``config.sim``."""
         return cls(build_sim(runtime, config.sim))
 

@@ -273,15 +273,15 @@ def build_system(cfg: SystemConfig, clock: Clock | None = None) -> System:
     robot's ROS 2 / NAOqi adapters otherwise (a :class:`WallClock`)."""
     adapter = adapter_type(cfg.robot.adapter)
     runtime = Runtime(clock or (SimClock() if adapter.simulated else WallClock()), seed=cfg.seed)
-    if adapter is SimAdapter:
-        return _build_on_sim(cfg, runtime)
+    if issubclass(adapter, SimAdapter):
+        return _build_on_sim(cfg, runtime, adapter)
     return _build_on_robot(cfg, runtime, adapter)
 
 
-def _build_on_sim(cfg: SystemConfig, runtime: Runtime) -> System:
+def _build_on_sim(cfg: SystemConfig, runtime: Runtime, kind: type[SimAdapter]) -> System:
     if cfg.home is not None and cfg.home != cfg.sim.home:
         raise ConfigError("home: the simulated home is sim.home; set that instead")
-    adapter = SimAdapter.build(runtime, cfg)
+    adapter = kind.build(runtime, cfg)
     sim = adapter.simulation
     # As an operator would on /initialpose: AMCL starts where the robot was put down, unless
     # navigation.start_place is None (global localisation from an unknown pose).
