@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import amiro.behavior.tasks  # noqa: F401 - registers the task types
-from amiro.behavior.modules import Modules
 from amiro.core import names
 from amiro.core.gridmap import load_map
 from amiro.core.messages import OccupancyGrid
@@ -161,15 +160,9 @@ def edge_behaviors(
         if names.UNDERSTAND in node.call_services
         else build_understanding(cfg.dialogue, residents)[1]
     )
-    modules = Modules(
-        clock=runtime.clock,
-        world=world,
-        navigation=navigation,
-        perception=senses.perception,
-        activity=senses.activity,
-        speech=BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second),
-        nlu=nlu,
-    )
+    modules = senses.modules(runtime, world, navigation)
+    modules.speech = BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second)
+    modules.nlu = nlu
     layer = build_behavior_layer(runtime, cfg, modules, checkpoints=True)
     if names.BEHAVIOR_RUN in node.serve_actions:  # the cloud's dialogue and dashboard ask
         runtime.add(BehaviorActionServer(layer.engine, layer.handlers))

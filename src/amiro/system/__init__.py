@@ -25,7 +25,7 @@ from amiro.activity.ports import ActivityRecognizer
 from amiro.activity.stack import build_activity_recognizer
 from amiro.behavior.engine import BehaviorEngine, EngineConfig
 from amiro.behavior.handlers import HandlerRegistry, yaml_handler
-from amiro.behavior.modules import Modules
+from amiro.behavior.modules import Localized, Modules
 from amiro.behavior.notifications import NotificationHandlerNode, UserProfile
 from amiro.behavior.planning.config import PlanningConfig
 from amiro.core.clock import Clock, SimClock, WallClock
@@ -207,6 +207,17 @@ class Senses:
     perception: PeopleFinder
     activity: ActivityRecognizer
 
+    def modules(self, runtime: Runtime, world: World, navigation: Localized) -> Modules:
+        """What every behaviour engine gets: the clock, the home, navigation and the senses
+        (speech and understanding are added where the dialogue runs)."""
+        return Modules(
+            clock=runtime.clock,
+            world=world,
+            navigation=navigation,
+            perception=self.perception,
+            activity=self.activity,
+        )
+
 
 def build_senses(
     runtime: Runtime,
@@ -368,13 +379,7 @@ def _assemble(
 ) -> System:
     """The behaviours, the smart environment and the dialogue on the robot's modules."""
     rooms = list(world.home.rooms)
-    modules = Modules(
-        clock=runtime.clock,
-        world=world,
-        navigation=navigation,
-        perception=senses.perception,
-        activity=senses.activity,
-    )
+    modules = senses.modules(runtime, world, navigation)
     layer = build_behavior_layer(runtime, cfg, modules)
     planner = (
         None
