@@ -110,3 +110,16 @@ def test_sigkill_in_the_middle_of_1000_writes_loses_no_acknowledged_record(
     assert stored >= acked + 1  # every acknowledged write survived (one more may have)
     assert stored <= acked + 2
     store.close()
+
+
+def test_a_database_that_cannot_be_opened_is_one_line_and_exit_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from amiro.cli import main
+
+    url = f"sqlite:///{tmp_path}/no/such/dir/h.db"
+    with pytest.raises(ConfigError, match="cannot open it: unable to open database file"):
+        HealthStore(url)
+    assert main(["serve", "--db", url, "--port", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err and url in err

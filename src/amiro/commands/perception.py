@@ -7,7 +7,14 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from amiro.commands.support import add_command, add_group, emit_json, emit_report
+from amiro.commands.support import (
+    add_command,
+    add_group,
+    add_out_flag,
+    emit_json,
+    emit_report,
+    out_file,
+)
 
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
@@ -29,9 +36,8 @@ def register(sub: Subcommands) -> None:
     ev.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     ev.add_argument("--people", type=int, default=17, help="people in the dataset (default 17)")
     ev.add_argument("--images", type=int, default=5, help="images per configuration (default 5)")
-    ev.add_argument(
-        "--plot", default="perception_error_by_distance.png", help="PNG of the error by distance"
-    )
+    add_out_flag(ev)
+    ev.add_argument("--plot", type=Path, help="PNG of the error by distance (default: in --out)")
     ev.add_argument("--no-plot", action="store_true", help="do not write the PNG")
     bench = add_command(
         commands,
@@ -85,7 +91,8 @@ def _evaluate(args: argparse.Namespace) -> int:
         np.random.default_rng(args.seed), DatasetSpec(people=args.people, images=args.images)
     )
     if not args.no_plot:
-        report["plot"] = str(plot_by_distance(report, Path(args.plot)))
+        plot = args.plot or out_file(args, "perception_error_by_distance.png")
+        report["plot"] = str(plot_by_distance(report, plot))
     if args.json:
         emit_json(report)
     else:

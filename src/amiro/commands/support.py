@@ -13,6 +13,7 @@ import math
 import sys
 from collections.abc import Callable
 from functools import partial
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -27,6 +28,28 @@ def add_json_flag(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--json", action="store_true", help="print exactly one JSON object on stdout"
     )
+
+
+DEFAULT_OUT = Path("amiro-out")
+
+
+def add_out_flag(parser: argparse.ArgumentParser) -> None:
+    """``--out DIR``: where an evaluation writes its plots and files."""
+    parser.add_argument(
+        "--out", type=Path, default=DEFAULT_OUT, help=f"output folder (default ./{DEFAULT_OUT})"
+    )
+
+
+def out_file(args: argparse.Namespace, name: str) -> Path:
+    """``name`` inside ``--out``, the folder made if needed (a one-line error if it cannot)."""
+    from amiro.core.config import ConfigError  # pydantic: only once a command runs
+
+    try:
+        args.out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ConfigError(f"--out {args.out}: {exc.strerror}") from None
+    path: Path = args.out / name
+    return path
 
 
 def add_group(

@@ -25,7 +25,7 @@ from sqlalchemy import (
     insert,
     select,
 )
-from sqlalchemy.exc import ArgumentError
+from sqlalchemy.exc import ArgumentError, DBAPIError
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 from sqlalchemy.pool import StaticPool
 
@@ -81,7 +81,11 @@ def open_engine(url: str | None) -> Engine:
             cur.execute("PRAGMA busy_timeout=5000")
             cur.close()
 
-    Base.metadata.create_all(engine)
+    try:
+        Base.metadata.create_all(engine)
+    except DBAPIError as exc:  # a missing folder, no permission, a server that is not there
+        engine.dispose()
+        raise ConfigError(f"database '{url}': cannot open it: {exc.orig}") from None
     return engine
 
 
