@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import torch
 from torch import nn
-from tqdm import tqdm  # type: ignore[import-untyped]
+from tqdm import tqdm
 
 from amiro.activity.augment import augment
 from amiro.activity.dataset import TRAIN_CAMERAS_DEG, TRAIN_SUBJECTS, WINDOW, generate

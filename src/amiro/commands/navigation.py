@@ -6,7 +6,14 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from amiro.commands.support import add_command, add_group, emit_json
+from amiro.commands.support import (
+    add_command,
+    add_group,
+    add_out_flag,
+    emit_json,
+    out_dir,
+    show_progress,
+)
 
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
@@ -30,6 +37,7 @@ def register(sub: Subcommands) -> None:
     exp.add_argument(
         "--max-speed", type=float, default=0.45, help="m/s, up to Pepper's 0.55 (default 0.45)"
     )
+    add_out_flag(exp)
     bench = add_command(nav_sub, "bench", _bench, help="per-cycle speed: A*, DWA, SLAM, AMCL")
     bench.add_argument("--seed", type=int, default=0)
 
@@ -91,7 +99,9 @@ def _experiments(args: argparse.Namespace) -> int:
         raise ConfigError("--runs must be at least 1")
     if not 0.05 <= args.max_speed <= PEPPER_MAX_SPEED:
         raise ConfigError(f"--max-speed must be between 0.05 and {PEPPER_MAX_SPEED} m/s")
-    result = run_experiments(args.runs, args.seed, args.max_speed)
+    result = run_experiments(
+        args.runs, args.seed, args.max_speed, out_dir(args), show_progress(args)
+    )
     if args.json:
         emit_json(result)
     else:

@@ -40,16 +40,26 @@ def add_out_flag(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def out_file(args: argparse.Namespace, name: str) -> Path:
-    """``name`` inside ``--out``, the folder made if needed (a one-line error if it cannot)."""
+def out_dir(args: argparse.Namespace) -> Path:
+    """The ``--out`` folder, made if needed (a one-line error if it cannot be)."""
     from amiro.core.config import ConfigError  # pydantic: only once a command runs
 
+    out: Path = args.out
     try:
-        args.out.mkdir(parents=True, exist_ok=True)
+        out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise ConfigError(f"--out {args.out}: {exc.strerror}") from None
-    path: Path = args.out / name
-    return path
+        raise ConfigError(f"--out {out}: {exc.strerror}") from None
+    return out
+
+
+def out_file(args: argparse.Namespace, name: str) -> Path:
+    """``name`` inside the ``--out`` folder."""
+    return out_dir(args) / name
+
+
+def show_progress(args: argparse.Namespace) -> bool:
+    """A progress bar on stderr: for a person at a terminal, never with ``--json``."""
+    return not getattr(args, "json", False) and sys.stderr.isatty()
 
 
 def add_group(

@@ -21,9 +21,11 @@ import numpy as np
 from amiro.core import names
 from amiro.core.bus import GoalHandle
 from amiro.core.clock import SimClock
+from amiro.core.gridmap import OCCUPIED
 from amiro.core.messages import Path as PathMsg
 from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
+from amiro.home.world import World
 from amiro.navigation.config import NavigationConfig
 from amiro.navigation.metrics import dtw, path_length, resample
 from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToResult
@@ -98,6 +100,8 @@ class RunResult:
     dtw_truth: float
     collisions: int
     replans: int
+    plan: tuple[Pose2D, ...] = field(default=(), repr=False)  # the plan the robot followed
+    driven: tuple[Pose2D, ...] = field(default=(), repr=False)  # its true path
 
 
 def arena_home(arena: str) -> Path:
@@ -179,6 +183,8 @@ def run_once(exp: Experiment, seed: int, max_speed: float, timeout_s: float = 24
         dtw_truth=_dtw(plan, truth) if plan and truth else float("inf"),
         collisions=sim.robot.collisions,
         replans=max(0, len(plans) - 1),
+        plan=tuple(plan),
+        driven=tuple(truth),
     )
 
 
@@ -207,19 +213,78 @@ def _summary(exp: Experiment, runs: list[RunResult]) -> dict[str, Any]:
     return row
 
 
-def run_experiments(runs: int = 5, seed: int = 0, max_speed: float = 0.45) -> dict[str, Any]:
-    """All experiments, ``runs`` seeds each; means per experiment beside the paper's."""
-    rows = []
+def run_experiments(
+    runs: int = 5,
+    seed: int = 0,
+    max_speed: float = 0.45,
+    plots: Path | None = None,
+    progress: bool = False,
+) -> dict[str, Any]:
+    """All experiments, ``runs`` seeds each; means per experiment beside the paper's.  With
+    ``plots``, one PNG per experiment there (the paths over the map, as the paper's Figures
+    11-14); ``progress``: a bar on stderr."""
+    from tqdm import tqdm
+
+    rows, written = [], []
+    bar = tqdm(total=runs * len(EXPERIMENTS), unit="run", disable=not progress, leave=False)
     for k, exp in enumerate(EXPERIMENTS):
-        results = [run_once(exp, seed + 1000 * k + i, max_speed) for i in range(runs)]
+        results = []
+        for i in range(runs):
+            bar.set_description(exp.name)
+            results.append(run_once(exp, seed + 1000 * k + i, max_speed))
+            bar.update()
         rows.append(_summary(exp, results))
-    return {
+        if plots is not None:
+            written.append(str(plot_runs(exp, results, plots / f"nav_{exp.name}.png")))
+    bar.close()
+    out: dict[str, Any] = {
         "experiments": rows,
         "localization": "amcl",
         "trajectory": "slam",
         "dtw_spacing_m": DTW_SPACING_M,
         "max_speed": max_speed,
     }
+    if plots is not None:
+        out["plots"] = written
+    return out
+
+
+def plot_runs(exp: Experiment, runs: list[RunResult], path: Path) -> Path:
+    """The arena's map, the obstacles, and each run's followed plan and true path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    world = World.load(arena_home(exp.arena))
+    grid = world.render()
+    data = np.asarray(grid.data).reshape(grid.height, grid.width)
+    ox, oy, _ = grid.origin
+    extent = (ox, ox + grid.width * grid.resolution, oy, oy + grid.height * grid.resolution)
+    fig, ax = plt.subplots(figsize=(8, 8 * (extent[3] - extent[2]) / (extent[1] - extent[0]) + 1))
+    ax.imshow(data == OCCUPIED, cmap="Greys", origin="lower", extent=extent, alpha=0.6)
+    for box in exp.obstacles:
+        xs, ys = zip(*[*box, box[0]], strict=True)
+        ax.fill(xs, ys, color="tab:red", alpha=0.35, label=None)
+    for i, run in enumerate(runs):
+        if run.plan:
+            ax.plot(*_xy(run.plan), "--", color="tab:blue", lw=1, label="plan" if i == 0 else None)
+        if run.driven:
+            ax.plot(*_xy(run.driven), color="tab:green", lw=1, label="driven" if i == 0 else None)
+    boxes = "" if not exp.obstacles else ", boxes in red" + ("" if exp.mapped else " (not mapped)")
+    ax.set_title(f"{exp.name}: {len(runs)} run{'s' * (len(runs) > 1)}{boxes}")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_aspect("equal")
+    ax.legend(loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _xy(poses: tuple[Pose2D, ...]) -> tuple[list[float], list[float]]:
+    return [p.x for p in poses], [p.y for p in poses]
 
 
 def format_table(result: dict[str, Any]) -> str:
