@@ -14,6 +14,7 @@ from amiro.commands.support import (
     emit_json,
     emit_report,
     out_file,
+    show_progress,
 )
 
 if TYPE_CHECKING:
@@ -87,9 +88,8 @@ def _evaluate(args: argparse.Namespace) -> int:
 
     if args.people < 1 or args.images < 1:
         raise ConfigError("--people and --images must be at least 1")
-    report = evaluate(
-        np.random.default_rng(args.seed), DatasetSpec(people=args.people, images=args.images)
-    )
+    spec = DatasetSpec(people=args.people, images=args.images)
+    report = evaluate(np.random.default_rng(args.seed), spec, progress=show_progress(args))
     if not args.no_plot:
         plot = args.plot or out_file(args, "perception_error_by_distance.png")
         report["plot"] = str(plot_by_distance(report, plot))

@@ -194,8 +194,12 @@ def evaluate(
     rng: np.random.Generator,
     spec: DatasetSpec | None = None,
     detector_cfg: SimDetectorSection | None = None,
+    progress: bool = False,
 ) -> dict[str, Any]:
-    """The whole protocol; returns the contract's report (see docs/perception.md)."""
+    """The whole protocol; returns the contract's report (see docs/perception.md);
+    ``progress``: a bar on stderr, in samples."""
+    from tqdm import tqdm
+
     spec = spec or DatasetSpec()
     camera = Camera()
     geom = CameraGeometry.from_info(camera.info(0.0), camera.params.height, camera.params.forward)
@@ -203,8 +207,10 @@ def evaluate(
     detector = SimDetector(rng_detect, detector_cfg)
     results = Results()
     started = wall_seconds()
-    for batch in generate(rng_data, spec, camera):
-        score_batch(batch, geom, detector, results, spec.depth_sigma)
+    with tqdm(total=spec.size, unit="sample", disable=not progress, leave=False) as bar:
+        for batch in generate(rng_data, spec, camera):
+            score_batch(batch, geom, detector, results, spec.depth_sigma)
+            bar.update(len(batch.distance))
     a = results.arrays()
     distances = [(f"{d:g}", d) for d in spec.distances]
     return {
