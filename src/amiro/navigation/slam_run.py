@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from amiro.core.gridmap import GridMap, save_map
+from amiro.core.gridmap import GridMap, map_pixels, save_map
 from amiro.core.messages import Pose2D
 from amiro.navigation.carmen import CarmenScan, read_carmen
 from amiro.navigation.graph_slam import GraphSlam, GraphSlamParams, tracking_params
@@ -45,8 +45,9 @@ def slam_over(
 
 def save_map_png(grid: GridMap, path: Path) -> None:
     """The map as a greyscale PNG (the PGM's pixels), to look at."""
-    save_map(grid, path.with_suffix(".yaml"), image_format="png")
-    path.with_suffix(".yaml").unlink()
+    from PIL import Image
+
+    Image.fromarray(np.ascontiguousarray(map_pixels(grid)), mode="L").save(path)
 
 
 def run_slam(
