@@ -35,9 +35,9 @@ LIDAR_FREE_MARGIN = 0.03
 # is first drawn from 12 m away (12 cm range noise) and must give way to the sharper views as
 # the robot comes closer, else the front end under-estimates travel by 0.4-0.8 %
 TRACKING_CLAMP = 2.0
-# one scan moves the robot <= 0.2 m and odometry is off by millimetres over that: a match
-# further than this from the odometry guess has slid along a corridor, and is refused
-MAX_CORRECTION_M = 0.08
+# a match further from the odometry guess than this many of the odometry's own sigmas (over
+# that scan step) has slid along a corridor or onto a door one further, and is refused
+GATE_SIGMAS = 3.0
 
 
 def tracking_params(max_range: float = 12.0) -> SlamParams:
@@ -46,7 +46,7 @@ def tracking_params(max_range: float = 12.0) -> SlamParams:
         max_range=max_range,
         free_margin=LIDAR_FREE_MARGIN,
         clamp=TRACKING_CLAMP,
-        max_correction_m=MAX_CORRECTION_M,
+        gate_sigmas=GATE_SIGMAS,
     )
 
 

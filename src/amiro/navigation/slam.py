@@ -36,7 +36,12 @@ class SlamParams:
     odom_weight: float = 20.0  # prior strength on the odometry guess (per level, scaled)
     free_margin: float = 0.0  # fraction of the range (see LogOddsGrid); 0: one cell
     clamp: float = L_CLAMP  # log-odds bound of the matching maps (see LogOddsGrid)
-    max_correction_m: float = math.inf  # a match this far from the odometry guess is refused
+    # one-sigma error of odometry over one scan step: (base, per metre, per radian moved);
+    # real wheel odometry over a 1 m step is off by ~5 cm and a few degrees
+    odom_sigma_xy: tuple[float, float, float] = (0.03, 0.1, 0.05)
+    odom_sigma_theta: tuple[float, float, float] = (0.01, 0.03, 0.1)
+    search_sigmas: float = 3.0  # half-width of the correlative search around the guess
+    gate_sigmas: float = math.inf  # a match this many sigmas from the odometry guess is refused
 
 
 class HectorSlam:
@@ -117,8 +122,13 @@ def match_scan(
     for grid in reversed(levels):
         prob = grid.prob
         weight = prior_weight * grid.resolution
+        last_xi, last_cost = xi, math.inf
         for _ in range(iterations):
-            step = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
+            step, cost = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
+            if cost > last_cost:  # the last step made things worse (e.g. a degenerate
+                xi = last_xi  # gradient on cell borders): undo it, end this level
+                break
+            last_xi, last_cost = xi, cost
             xi = xi + step
             if abs(step[0]) + abs(step[1]) < 1e-4 and abs(step[2]) < 1e-4:
                 break
@@ -133,8 +143,9 @@ def _gauss_newton_step(
     xi: FloatArray,
     prior: FloatArray,
     weight: float,
-) -> FloatArray:
-    """One Gauss-Newton step on sum (1 - M(S_i(xi)))^2 + weight * |xi - prior|^2."""
+) -> tuple[FloatArray, float]:
+    """One Gauss-Newton step on sum (1 - M(S_i(xi)))^2 + weight * |xi - prior|^2, and that
+    cost at ``xi``."""
     c, s = math.cos(xi[2]), math.sin(xi[2])
     wx = xi[0] + c * px - s * py
     wy = xi[1] + s * px + c * py
@@ -144,12 +155,13 @@ def _gauss_newton_step(
     dtheta = gx * (-s * px - c * py) + gy * (c * px - s * py)
     jac = np.column_stack((gx, gy, dtheta))
     r = 1.0 - m
+    cost = float(r @ r + weight * np.sum((xi - prior) ** 2))
     hess = jac.T @ jac + weight * np.diag([1.0, 1.0, 1.0])
     grad = jac.T @ r + weight * (prior - xi) * np.array([1.0, 1.0, 1.0])
     try:
         step = np.linalg.solve(hess + 1e-9 * np.eye(3), grad)
     except np.linalg.LinAlgError:
-        return np.zeros(3)
+        return np.zeros(3), cost
     step[:2] = np.clip(step[:2], -0.3, 0.3)
     step[2] = float(np.clip(step[2], -0.2, 0.2))
-    return np.asarray(step)
+    return np.asarray(step), cost
