@@ -45,6 +45,9 @@ class LoopParams:
     consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
     independent_m: float = 3.0  # agreeing matches must come from this far apart
     witnesses: int = 2  # earlier matches that must agree with a new one to correct the map
+    # ... unless it is this unique (runner-up / best): the first closure of a big loop,
+    # after metres of drift, seldom finds a second witness before the robot has passed
+    unique_ratio: float = 0.65
 
 
 @dataclass(frozen=True)
@@ -103,7 +106,8 @@ class LoopCloser:
         accepted: list[LoopEdge] = []
         for cand in found:
             dx, dy, dth = cand.correction
-            if math.hypot(dx, dy) < p.agree_m and abs(dth) < p.agree_rad:
+            small = math.hypot(dx, dy) < p.agree_m and abs(dth) < p.agree_rad
+            if small or cand.edge.runner_up <= p.unique_ratio * cand.edge.score:
                 accepted.append(cand.edge)
                 continue
             agreeing = [w for w in self._waiting if _agree(w, cand, p)]
