@@ -40,8 +40,8 @@ class LoopParams:
     max_candidates: int = 2
     far_m: float = 60.0  # a submap this much travel back has drifted with the whole path
     span_margin_m: float = 1.0
-    agree_m: float = 0.5  # two matches agree if their corrections differ less than this
-    agree_rad: float = math.radians(5.0)
+    agree_m: float = 0.3  # two matches agree if their corrections differ less than this
+    agree_rad: float = math.radians(2.0)
     consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
     independent_m: float = 3.0  # agreeing matches must come from this far apart
     witnesses: int = 2  # earlier matches that must agree with a new one to correct the map

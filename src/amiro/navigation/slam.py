@@ -122,13 +122,8 @@ def match_scan(
     for grid in reversed(levels):
         prob = grid.prob
         weight = prior_weight * grid.resolution
-        last_xi, last_cost = xi, math.inf
         for _ in range(iterations):
-            step, cost = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
-            if cost > last_cost:  # the last step made things worse (e.g. a degenerate
-                xi = last_xi  # gradient on cell borders): undo it, end this level
-                break
-            last_xi, last_cost = xi, cost
+            step = _gauss_newton_step(prob, grid, px, py, xi, prior, weight)
             xi = xi + step
             if abs(step[0]) + abs(step[1]) < 1e-4 and abs(step[2]) < 1e-4:
                 break
@@ -143,9 +138,8 @@ def _gauss_newton_step(
     xi: FloatArray,
     prior: FloatArray,
     weight: float,
-) -> tuple[FloatArray, float]:
-    """One Gauss-Newton step on sum (1 - M(S_i(xi)))^2 + weight * |xi - prior|^2, and that
-    cost at ``xi``."""
+) -> FloatArray:
+    """One Gauss-Newton step on sum (1 - M(S_i(xi)))^2 + weight * |xi - prior|^2."""
     c, s = math.cos(xi[2]), math.sin(xi[2])
     wx = xi[0] + c * px - s * py
     wy = xi[1] + s * px + c * py
@@ -155,13 +149,12 @@ def _gauss_newton_step(
     dtheta = gx * (-s * px - c * py) + gy * (c * px - s * py)
     jac = np.column_stack((gx, gy, dtheta))
     r = 1.0 - m
-    cost = float(r @ r + weight * np.sum((xi - prior) ** 2))
     hess = jac.T @ jac + weight * np.diag([1.0, 1.0, 1.0])
     grad = jac.T @ r + weight * (prior - xi) * np.array([1.0, 1.0, 1.0])
     try:
         step = np.linalg.solve(hess + 1e-9 * np.eye(3), grad)
     except np.linalg.LinAlgError:
-        return np.zeros(3), cost
+        return np.zeros(3)
     step[:2] = np.clip(step[:2], -0.3, 0.3)
     step[2] = float(np.clip(step[2], -0.2, 0.2))
-    return np.asarray(step), cost
+    return np.asarray(step)

@@ -99,8 +99,15 @@ class SubmapFrontEnd:
             return self.pose
         levels = self.active[0].levels
         start = guess
-        if window is not None:
-            coarse = levels[-1]
+        coarse = levels[-1]
+        # Gauss-Newton converges from within about a coarsest cell (at the points' mean
+        # range, for the heading); a wider uncertainty (scans a metre apart, a turn) first
+        # needs the correlative search
+        if (
+            window is not None
+            and p.search_sigmas * max(window.xy, window.theta * float(np.mean(np.hypot(px, py))))
+            > coarse.resolution
+        ):
             start = correlative_guess(coarse, px, py, guess, window, p.search_sigmas)
         weight = p.odom_weight if odom is not None else 0.0
         matched = match_scan(levels, px, py, start, weight, p.iterations)
