@@ -12,7 +12,7 @@ from amiro.core.gridmap import OCCUPIED, GridMap
 from amiro.core.messages import Pose2D
 from amiro.navigation.graph_slam import GraphSlamParams, tracking_params
 from amiro.navigation.occupancy import LogOddsGrid
-from amiro.navigation.submaps import SubmapFrontEnd
+from amiro.navigation.submaps import SubmapFrontEnd, odometry_window
 from amiro.sim.lidar import Lidar
 
 
@@ -39,7 +39,12 @@ def test_a_low_clamp_lets_closer_views_redraw_a_wall() -> None:
 def test_graph_slam_tracks_with_the_low_clamp_and_the_gate() -> None:
     slam = GraphSlamParams().slam
     assert slam == tracking_params()
-    assert slam.clamp <= 2.0 and slam.max_correction_m < 0.2
+    # the gate follows the odometry's uncertainty over the step: under 0.2 m for a short
+    # simulated step, decimetres for the metre between two scans of a real log
+    short = odometry_window(Pose2D(0.2, 0.0, 0.0), slam)
+    long = odometry_window(Pose2D(1.0, 0.0, 0.3), slam)
+    assert slam.clamp <= 2.0 and slam.gate_sigmas * short.xy < 0.2
+    assert slam.gate_sigmas * long.xy > 0.3
 
 
 def _room() -> GridMap:
@@ -51,10 +56,10 @@ def _room() -> GridMap:
     return GridMap(data, 0.05)
 
 
-def _track_a_false_jump(max_correction_m: float) -> tuple[Pose2D, SubmapFrontEnd]:
+def _track_a_false_jump(gate_sigmas: float) -> tuple[Pose2D, SubmapFrontEnd]:
     """Two scans from the same place while odometry claims a 0.2 m step forward."""
     lidar, room = Lidar(), _room()
-    params = dataclasses.replace(tracking_params(), max_correction_m=max_correction_m)
+    params = dataclasses.replace(tracking_params(), gate_sigmas=gate_sigmas)
     front = SubmapFrontEnd(params)
     true = Pose2D(2.0, 2.0, 0.3)
     ranges = lidar.true_ranges(room, true)
@@ -73,6 +78,6 @@ def test_the_matcher_alone_undoes_the_false_jump() -> None:
 
 
 def test_a_match_far_from_the_odometry_guess_is_refused() -> None:
-    pose, front = _track_a_false_jump(0.08)
+    pose, front = _track_a_false_jump(tracking_params().gate_sigmas)
     assert abs(pose.x - 0.2) < 1e-9 and abs(pose.y) < 1e-9
     assert front.refused == 1

@@ -52,6 +52,21 @@ def register(sub: Subcommands) -> None:
     run.add_argument(
         "--no-loop-closure", action="store_true", help="front end only (submap scan matching)"
     )
+    ev = add_command(
+        slam_sub,
+        "evaluate",
+        _slam_evaluate,
+        help="SLAM over every CARMEN log in DIR: ATE, relation error, speed, plots",
+    )
+    ev.add_argument("dir", help="folder of CARMEN logs (.log or .log.gz) with reference poses")
+    ev.add_argument("--out", default=None, help="folder for a plot and a map image per run")
+    ev.add_argument(
+        "--drift",
+        choices=("none", "pepper", "both"),
+        default="both",
+        help="odometry: the log's real one (none), Pepper-like drift added (pepper), or both",
+    )
+    ev.add_argument("--seed", type=int, default=0, help="seed of the Pepper drift")
     log = add_command(
         slam_sub,
         "simulate",
@@ -134,6 +149,27 @@ def _slam_run(args: argparse.Namespace) -> int:
         loop_closure=not args.no_loop_closure,
     )
     _print(result, args.json)
+    return 0
+
+
+def _slam_evaluate(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.evaluation.slam_evaluate import evaluate_dir, format_table
+
+    folder = Path(args.dir)
+    if not folder.is_dir():
+        raise ConfigError(f"{folder}: no such folder")
+    drifts = {"none": ("real",), "pepper": ("pepper",), "both": ("real", "pepper")}[args.drift]
+    try:
+        result = evaluate_dir(folder, Path(args.out) if args.out else None, drifts, args.seed)
+    except ValueError as exc:
+        raise ConfigError(str(exc)) from None
+    if not result["logs"]:
+        raise ConfigError(f"{folder}: no CARMEN logs (*.log, *.log.gz)")
+    if args.json:
+        emit_json(result)
+    else:
+        print(format_table(result))
     return 0
 
 

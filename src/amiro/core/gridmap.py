@@ -300,6 +300,17 @@ def _classify(
     return out
 
 
+def map_pixels(grid: GridMap) -> npt.NDArray[np.uint8]:
+    """The map_saver image of ``grid`` (top row first): free 254, occupied 0, unknown 205."""
+    d = grid.data.astype(np.int64)
+    pix = np.full(d.shape, 205, dtype=np.uint8)
+    pix[d == FREE] = 254
+    pix[d == OCCUPIED] = 0
+    mid = (d > 0) & (d < 100)
+    pix[mid] = np.rint(255.0 * (1.0 - d[mid] / 100.0)).astype(np.uint8)
+    return np.flipud(pix)
+
+
 def save_map(
     grid: GridMap,
     yaml_path: str | Path,
@@ -318,13 +329,7 @@ def save_map(
     path = Path(yaml_path)
     path.parent.mkdir(parents=True, exist_ok=True)
     img_path = path.with_suffix(f".{fmt}")
-    d = grid.data.astype(np.int64)
-    pix = np.full(d.shape, 205, dtype=np.uint8)
-    pix[d == FREE] = 254
-    pix[d == OCCUPIED] = 0
-    mid = (d > 0) & (d < 100)
-    pix[mid] = np.rint(255.0 * (1.0 - d[mid] / 100.0)).astype(np.uint8)
-    pix = np.flipud(pix)
+    pix = map_pixels(grid)
     if fmt == "pgm":
         write_pgm(img_path, pix)
     else:

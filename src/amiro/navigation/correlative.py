@@ -19,6 +19,7 @@ from scipy.ndimage import gaussian_filter, maximum_filter
 
 from amiro.core.geometry import wrap_angle
 from amiro.core.messages import Pose2D
+from amiro.navigation.scan_kernels import lattice_cells, score_lattice
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -58,9 +59,8 @@ class CorrelativeMatcher:
         size = coarse_factor + 1
         coarse = maximum_filter(fine, size=size, mode="constant")
         known_coarse = maximum_filter(known, size=size, mode="constant")
-        # hit likelihood and seen-ness packed in one array: one gather reads both
-        self.fine_pair = (fine + 1j * known).astype(np.complex64)
-        self.coarse_pair = (coarse + 1j * known_coarse).astype(np.complex64)
+        self.fine = (fine.astype(np.float32), known.astype(np.float32))
+        self.coarse = (coarse.astype(np.float32), known_coarse.astype(np.float32))
         self.min_known = min_known
         self.resolution = resolution
         self.origin = origin
@@ -76,14 +76,14 @@ class CorrelativeMatcher:
         thetas: FloatArray = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1.0)
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
         offsets = self.factor * np.arange(-n_xy, n_xy + 1)
-        scores = self._scores(self.coarse_pair, px, py, guess.x, guess.y, thetas, offsets)
+        scores = self._scores(self.coarse, px, py, guess.x, guess.y, thetas, offsets)
         candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
         fine_offsets = np.arange(-self.factor, self.factor + 1)
         fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)
         refined: list[tuple[float, Pose2D]] = []
         for cand in candidates:
             ths = cand.theta + fine_steps
-            sc = self._scores(self.fine_pair, px, py, cand.x, cand.y, ths, fine_offsets)
+            sc = self._scores(self.fine, px, py, cand.x, cand.y, ths, fine_offsets)
             k, r, c = np.unravel_index(int(np.argmax(sc)), sc.shape)
             res = self.resolution
             pose = Pose2D(
@@ -99,7 +99,7 @@ class CorrelativeMatcher:
 
     def _scores(
         self,
-        pair: npt.NDArray[np.complex64],
+        grids: tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]],
         px: FloatArray,
         py: FloatArray,
         x: float,
@@ -109,20 +109,11 @@ class CorrelativeMatcher:
     ) -> FloatArray:
         """Mean grid value at the points in seen cells (at least ``min_known`` of them) for
         every (theta, row offset, column offset)."""
-        h, w = pair.shape
-        res = self.resolution
-        out = np.empty((len(thetas), len(offsets), len(offsets)))
-        for k, theta in enumerate(thetas):
-            c, s = math.cos(theta), math.sin(theta)
-            col = np.floor((x + c * px - s * py - self.origin[0]) / res).astype(np.int64)
-            row = np.floor((y + s * px + c * py - self.origin[1]) / res).astype(np.int64)
-            rows = row[None, None, :] + offsets[:, None, None]
-            cols = col[None, None, :] + offsets[None, :, None]
-            inside = (rows >= 0) & (rows < h) & (cols >= 0) & (cols < w)
-            vals = pair[rows.clip(0, h - 1), cols.clip(0, w - 1)]
-            sums = np.where(inside, vals, 0).sum(axis=2)
-            out[k] = sums.real / np.maximum(sums.imag, self.min_known * len(px))
-        return out
+        rows, cols = lattice_cells(px, py, x, y, thetas, self.origin, self.resolution)
+        hit, known = grids
+        return score_lattice(
+            hit, known, rows, cols, offsets.astype(np.int64), self.min_known * len(px)
+        )
 
     def _distinct_best(
         self,

@@ -35,9 +35,9 @@ LIDAR_FREE_MARGIN = 0.03
 # is first drawn from 12 m away (12 cm range noise) and must give way to the sharper views as
 # the robot comes closer, else the front end under-estimates travel by 0.4-0.8 %
 TRACKING_CLAMP = 2.0
-# one scan moves the robot <= 0.2 m and odometry is off by millimetres over that: a match
-# further than this from the odometry guess has slid along a corridor, and is refused
-MAX_CORRECTION_M = 0.08
+# a match further from the odometry guess than this many of the odometry's own sigmas (over
+# that scan step) has slid along a corridor or onto a door one further, and is refused
+GATE_SIGMAS = 3.0
 
 
 def tracking_params(max_range: float = 12.0) -> SlamParams:
@@ -46,7 +46,7 @@ def tracking_params(max_range: float = 12.0) -> SlamParams:
         max_range=max_range,
         free_margin=LIDAR_FREE_MARGIN,
         clamp=TRACKING_CLAMP,
-        max_correction_m=MAX_CORRECTION_M,
+        gate_sigmas=GATE_SIGMAS,
     )
 
 
@@ -88,7 +88,7 @@ class GraphSlam:
         self.graph = PoseGraph()
         self.keyframes: list[_Keyframe] = []
         self.loop_closures = 0
-        self.backend_seconds = 0.0  # wall time, only to report the back end's cost
+        self.backend_seconds = 0.0  # CPU time, only to report the back end's cost
         self._scan_keyframe: list[tuple[int, Pose2D]] = []
         self._travel = 0.0
         self._last_check = -math.inf
@@ -114,9 +114,9 @@ class GraphSlam:
         rel = between(self.keyframes[k].frontend, pose)
         self._scan_keyframe.append((k, rel))
         if keyframe is not None and p.loop_closure:
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             self._close_loops(keyframe)
-            self.backend_seconds += time.perf_counter() - t0
+            self.backend_seconds += time.process_time() - t0
         return compose(self.graph.pose(k), rel)
 
     def _maybe_add_keyframe(self, pose: Pose2D, px: FloatArray, py: FloatArray) -> int | None:
@@ -179,10 +179,10 @@ class GraphSlam:
     def finish(self) -> None:
         """Final optimisation over every edge, run to convergence."""
         if self.loop_closures:
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             self.graph.optimize()
             self._pending = 0
-            self.backend_seconds += time.perf_counter() - t0
+            self.backend_seconds += time.process_time() - t0
 
     def trajectory(self) -> list[Pose2D]:
         return [compose(self.graph.pose(k), rel) for k, rel in self._scan_keyframe]

@@ -38,12 +38,16 @@ class LoopParams:
     min_score: float = 0.5
     max_ambiguity: float = 0.85  # runner-up score / best score
     max_candidates: int = 2
+    far_m: float = 60.0  # a submap this much travel back has drifted with the whole path
     span_margin_m: float = 1.0
     agree_m: float = 0.3  # two matches agree if their corrections differ less than this
     agree_rad: float = math.radians(2.0)
     consensus_m: float = 8.0  # how far back a match waits for a second one that agrees
     independent_m: float = 3.0  # agreeing matches must come from this far apart
     witnesses: int = 2  # earlier matches that must agree with a new one to correct the map
+    # ... unless it is this unique (runner-up / best): the first closure of a big loop,
+    # after metres of drift, seldom finds a second witness before the robot has passed
+    unique_ratio: float = 0.65
 
 
 @dataclass(frozen=True)
@@ -102,7 +106,8 @@ class LoopCloser:
         accepted: list[LoopEdge] = []
         for cand in found:
             dx, dy, dth = cand.correction
-            if math.hypot(dx, dy) < p.agree_m and abs(dth) < p.agree_rad:
+            small = math.hypot(dx, dy) < p.agree_m and abs(dth) < p.agree_rad
+            if small or cand.edge.runner_up <= p.unique_ratio * cand.edge.score:
                 accepted.append(cand.edge)
                 continue
             agreeing = [w for w in self._waiting if _agree(w, cand, p)]
@@ -113,6 +118,18 @@ class LoopCloser:
             else:
                 self._waiting.append(cand)
         return accepted
+
+    def _window(self, apart_m: float, since_closure: float) -> SearchWindow:
+        """How far the estimate can have drifted from a submap built ``apart_m`` of travel
+        ago: the drift of that path, unless a closure since then has bounded it (a closure
+        ties the estimate to the map only near where it happened, so the two are summed
+        only up to the path between them)."""
+        p = self.params
+        drift_m = max(since_closure, apart_m) if apart_m > p.far_m else since_closure
+        return SearchWindow(
+            min(p.window_max_m, p.window_base_m + p.window_per_m * drift_m),
+            min(p.theta_max, p.theta_base + p.theta_per_m * drift_m),
+        )
 
     def _matches(
         self,
@@ -125,22 +142,19 @@ class LoopCloser:
         since_closure: float,
     ) -> list[_Candidate]:
         p = self.params
-        window = SearchWindow(
-            min(p.window_max_m, p.window_base_m + p.window_per_m * since_closure),
-            min(p.theta_max, p.theta_base + p.theta_per_m * since_closure),
-        )
         near = []
         for fin in self._submaps:
             if fin.travel > travel - p.min_travel_m:
                 continue
+            window = self._window(travel - fin.travel, since_closure)
             # only submaps built from around here: their scans looked where this one looks
             span = poses[fin.submap.anchor : fin.submap.last_keyframe + 1, :2]
             d = float(np.min(np.hypot(span[:, 0] - current.x, span[:, 1] - current.y)))
             if d < window.xy + p.span_margin_m:
-                near.append((d, fin))
+                near.append((d, fin, window))
         near.sort(key=lambda t: t[0])
         edges = []
-        for _, fin in near[: p.max_candidates]:
+        for _, fin, window in near[: p.max_candidates]:
             g_anchor = _pose(poses, fin.submap.anchor)
             sm = fin.submap
             guess = compose(sm.anchor_pose, between(g_anchor, current))

@@ -26,9 +26,21 @@ def ate_similarity(estimate: FloatArray, reference: FloatArray) -> tuple[float, 
     return _aligned_rmse(estimate, reference, with_scale=True)
 
 
+def align(estimate: FloatArray, reference: FloatArray) -> FloatArray:
+    """``estimate`` moved by the rigid 2D transform that best fits it onto ``reference``."""
+    return _umeyama(estimate, reference, with_scale=False)[0]
+
+
 def _aligned_rmse(
     estimate: FloatArray, reference: FloatArray, with_scale: bool
 ) -> tuple[float, float]:
+    aligned, scale = _umeyama(estimate, reference, with_scale)
+    return float(np.sqrt(np.mean(np.sum((aligned - reference) ** 2, axis=1)))), scale
+
+
+def _umeyama(
+    estimate: FloatArray, reference: FloatArray, with_scale: bool
+) -> tuple[FloatArray, float]:
     """Umeyama (1991): the rotation (and scale) mapping ``estimate`` onto ``reference``."""
     mu_e, mu_r = estimate.mean(axis=0), reference.mean(axis=0)
     e, r = estimate - mu_e, reference - mu_r
@@ -36,8 +48,7 @@ def _aligned_rmse(
     flip = np.diag([1.0, np.sign(np.linalg.det(u @ vt))])
     rot = (u @ flip @ vt).T
     scale = float(np.sum(sv * np.diag(flip)) / np.sum(e**2)) if with_scale else 1.0
-    aligned = scale * e @ rot.T + mu_r
-    return float(np.sqrt(np.mean(np.sum((aligned - reference) ** 2, axis=1)))), scale
+    return scale * e @ rot.T + mu_r, scale
 
 
 def resample(points: list[Pose2D], spacing: float = 0.1) -> FloatArray:

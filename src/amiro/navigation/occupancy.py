@@ -11,6 +11,7 @@ import numpy as np
 import numpy.typing as npt
 
 from amiro.core.gridmap import FREE, OCCUPIED, UNKNOWN, GridMap
+from amiro.navigation.scan_kernels import integrate_beams
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -42,40 +43,42 @@ class LogOddsGrid:
         shape = (round(height_m / resolution), round(width_m / resolution))
         self.logodds = np.zeros(shape, np.float32)
         self.prob = np.full(shape, 0.5, np.float32)  # kept in step with the log-odds
+        self._mark = np.zeros(shape, np.uint8)  # scratch of ``integrate``, all zero between
 
-    def _cells(
-        self, xs: FloatArray, ys: FloatArray
-    ) -> tuple[npt.NDArray[np.intp], npt.NDArray[np.bool_]]:
-        h, w = self.logodds.shape
-        col = np.floor((xs - self.origin[0]) / self.resolution).astype(np.intp)
-        row = np.floor((ys - self.origin[1]) / self.resolution).astype(np.intp)
-        inside = (col >= 0) & (col < w) & (row >= 0) & (row < h)
-        return row * w + col, inside
+    def crop(self, r0: int, r1: int, c0: int, c1: int) -> None:
+        """Keep rows r0..r1-1 and columns c0..c1-1 (the origin moves with them)."""
+        self.logodds = self.logodds[r0:r1, c0:c1].copy()
+        self.prob = self.prob[r0:r1, c0:c1].copy()
+        self._mark = self._mark[r0:r1, c0:c1].copy()
+        res = self.resolution
+        self.origin = (self.origin[0] + c0 * res, self.origin[1] + r0 * res)
 
     def integrate(self, x: float, y: float, hx: FloatArray, hy: FloatArray) -> None:
         """Beams from (x, y) ending at hits (hx, hy): free along, occupied at the end."""
-        res = self.resolution
-        lengths = np.hypot(hx - x, hy - y)
-        if lengths.size == 0:
+        if hx.size == 0:
             return
-        n = int(np.ceil(lengths.max() / res))
-        t = (np.arange(n) + 0.5) / max(n, 1)
-        short = np.maximum(res, self.free_margin * lengths)[:, None]
-        keep = t[None, :] * lengths[:, None] < lengths[:, None] - short  # stop short of the hit
-        fx = (x + t[None, :] * (hx - x)[:, None])[keep]
-        fy = (y + t[None, :] * (hy - y)[:, None])[keep]
-        flat = self.logodds.reshape(-1)
-        free, inside = self._cells(fx, fy)
-        free = free[inside]
-        occ, inside = self._cells(hx, hy)
-        occ = occ[inside]
-        # repeated indices all write the same value, so no de-duplication is needed; a cell
-        # both crossed and hit this scan takes only the hit (from its value before the scan)
-        occ_before = flat[occ]
-        flat[free] = np.maximum(flat[free] + L_FREE, -self.clamp)
-        flat[occ] = np.minimum(occ_before + L_OCC, self.clamp)
-        changed = np.concatenate((free, occ))
-        self.prob.reshape(-1)[changed] = 1.0 - 1.0 / (1.0 + np.exp(flat[changed]))
+        res = self.resolution
+        longest = float(np.max(np.hypot(hx - x, hy - y)))
+        bound = hx.size * (int(np.ceil(longest / res)) + 1)
+        changed = np.empty(min(bound, self.logodds.size), np.int64)
+        count = integrate_beams(
+            self.logodds,
+            self._mark,
+            x,
+            y,
+            np.ascontiguousarray(hx, np.float64),
+            np.ascontiguousarray(hy, np.float64),
+            self.origin[0],
+            self.origin[1],
+            res,
+            self.free_margin,
+            L_FREE,
+            L_OCC,
+            self.clamp,
+            changed,
+        )
+        cells = changed[:count]
+        self.prob.reshape(-1)[cells] = 1.0 - 1.0 / (1.0 + np.exp(self.logodds.reshape(-1)[cells]))
 
     def to_gridmap(self) -> GridMap:
         data = np.full(self.logodds.shape, UNKNOWN, dtype=np.int8)

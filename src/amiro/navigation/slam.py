@@ -36,7 +36,12 @@ class SlamParams:
     odom_weight: float = 20.0  # prior strength on the odometry guess (per level, scaled)
     free_margin: float = 0.0  # fraction of the range (see LogOddsGrid); 0: one cell
     clamp: float = L_CLAMP  # log-odds bound of the matching maps (see LogOddsGrid)
-    max_correction_m: float = math.inf  # a match this far from the odometry guess is refused
+    # one-sigma error of odometry over one scan step: (base, per metre, per radian moved);
+    # real wheel odometry over a 1 m step is off by ~5 cm and a few degrees
+    odom_sigma_xy: tuple[float, float, float] = (0.03, 0.1, 0.05)
+    odom_sigma_theta: tuple[float, float, float] = (0.01, 0.03, 0.1)
+    search_sigmas: float = 3.0  # half-width of the correlative search around the guess
+    gate_sigmas: float = math.inf  # a match this many sigmas from the odometry guess is refused
 
 
 class HectorSlam:

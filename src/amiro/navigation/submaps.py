@@ -16,11 +16,17 @@ import numpy as np
 import numpy.typing as npt
 
 from amiro.core.messages import Pose2D
+from amiro.navigation.correlative import SearchWindow
 from amiro.navigation.occupancy import LogOddsGrid
 from amiro.navigation.poses import between, compose
+from amiro.navigation.scan_kernels import lattice_cells, mean_lattice
 from amiro.navigation.slam import SlamParams, match_scan
 
 FloatArray = npt.NDArray[np.float64]
+
+# weight of the motion prior against the mean occupancy (0..1) in the correlative guess:
+# a 3-sigma move must buy 0.05 more occupancy than staying at the odometry guess
+MOTION_PRIOR = 0.011
 
 
 class Submap:
@@ -59,10 +65,7 @@ class Submap:
         if seen[0].size:
             r0, r1 = int(seen[0].min()), int(seen[0].max()) + 1
             c0, c1 = int(seen[1].min()), int(seen[1].max()) + 1
-            fine.logodds = fine.logodds[r0:r1, c0:c1].copy()
-            fine.prob = fine.prob[r0:r1, c0:c1].copy()
-            res = fine.resolution
-            fine.origin = (fine.origin[0] + c0 * res, fine.origin[1] + r0 * res)
+            fine.crop(r0, r1, c0, c1)
         self.levels = [fine]
 
 
@@ -79,23 +82,39 @@ class SubmapFrontEnd:
         self.refused = 0  # matches refused for straying from the odometry guess
 
     def track(self, px: FloatArray, py: FloatArray, odom: Pose2D | None) -> Pose2D:
-        """Match one scan (points in the robot frame) and return the front-end pose."""
+        """Match one scan (points in the robot frame) and return the front-end pose: a
+        correlative search over the odometry's uncertainty window gives the initial guess
+        (real scans can be a metre apart, beyond Gauss-Newton's basin), Gauss-Newton refines
+        it; a match further from the odometry guess than ``gate_sigmas`` is refused."""
+        p = self.params
         guess = self.pose
+        window = None
         if odom is not None and self._last_odom is not None:
-            guess = compose(self.pose, between(self._last_odom, odom))
+            step = between(self._last_odom, odom)
+            guess = compose(self.pose, step)
+            window = odometry_window(step, p)
         self._last_odom = odom
-        if self.active and px.size >= 10:
-            p = self.params
-            weight = p.odom_weight if odom is not None else 0.0
-            matched = match_scan(self.active[0].levels, px, py, guess, weight, p.iterations)
-            # odometry is off by millimetres over one scan's motion: a match decimetres from
-            # its guess has slid along a self-similar corridor (or onto a door one further)
-            if odom is not None and matched.distance_to(guess) > p.max_correction_m:
-                self.refused += 1
-                matched = guess
-            self.pose = matched
-        else:
+        if not self.active or px.size < 10:
             self.pose = guess
+            return self.pose
+        levels = self.active[0].levels
+        start = guess
+        coarse = levels[-1]
+        # Gauss-Newton converges from within about a coarsest cell (at the points' mean
+        # range, for the heading); a wider uncertainty (scans a metre apart, a turn) first
+        # needs the correlative search
+        if (
+            window is not None
+            and p.search_sigmas * max(window.xy, window.theta * float(np.mean(np.hypot(px, py))))
+            > coarse.resolution
+        ):
+            start = correlative_guess(coarse, px, py, guess, window, p.search_sigmas)
+        weight = p.odom_weight if odom is not None else 0.0
+        matched = match_scan(levels, px, py, start, weight, p.iterations)
+        if window is not None and _sigmas(matched, guess, window) > p.gate_sigmas:
+            self.refused += 1
+            matched = guess
+        self.pose = matched
         return self.pose
 
     def should_insert(self) -> bool:
@@ -128,3 +147,48 @@ class SubmapFrontEnd:
             if keyframe is not None:
                 submap.last_keyframe = keyframe
         return finished
+
+
+def odometry_window(step: Pose2D, p: SlamParams) -> SearchWindow:
+    """One sigma of the odometry's error over ``step`` (the motion between two scans)."""
+    d, turn = math.hypot(step.x, step.y), abs(step.theta)
+    bx, mx, rx = p.odom_sigma_xy
+    bt, mt, rt = p.odom_sigma_theta
+    return SearchWindow(bx + mx * d + rx * turn, bt + mt * d + rt * turn)
+
+
+def _sigmas(pose: Pose2D, guess: Pose2D, sigma: SearchWindow) -> float:
+    """How many sigmas ``pose`` is from ``guess`` (the larger of position and heading)."""
+    d_theta = abs(math.remainder(pose.theta - guess.theta, math.tau))
+    return max(pose.distance_to(guess) / sigma.xy, d_theta / sigma.theta)
+
+
+def correlative_guess(
+    grid: LogOddsGrid,
+    px: FloatArray,
+    py: FloatArray,
+    guess: Pose2D,
+    sigma: SearchWindow,
+    sigmas: float,
+    max_points: int = 160,
+) -> Pose2D:
+    """The best pose on a lattice of ``grid``'s cells and rotations (a cell at the reach) within
+    ``sigmas`` of ``guess``: mean occupancy at the scan points, less a Gaussian motion prior
+    that breaks ties along corridors (Olson 2009)."""
+    res = grid.resolution
+    stride = max(1, px.size // max_points)
+    sx, sy = px[::stride], py[::stride]
+    reach = max(float(np.max(np.hypot(sx, sy))), 1.0)
+    n_xy = max(1, math.ceil(sigmas * sigma.xy / res))
+    angle_step = res / reach
+    n_th = max(1, math.ceil(sigmas * sigma.theta / angle_step))
+    thetas = guess.theta + angle_step * np.arange(-n_th, n_th + 1.0)
+    offsets = np.arange(-n_xy, n_xy + 1, dtype=np.int64)
+    rows, cols = lattice_cells(sx, sy, guess.x, guess.y, thetas, grid.origin, res)
+    scores = mean_lattice(grid.prob, rows, cols, offsets)
+    metres = offsets * res
+    d_th = (thetas - guess.theta)[:, None, None] / sigma.theta
+    d_xy = (metres[:, None] ** 2 + metres[None, :] ** 2)[None, :, :] / sigma.xy**2
+    scores = scores - MOTION_PRIOR * 0.5 * (d_xy + d_th**2)
+    k, r, c = np.unravel_index(int(np.argmax(scores)), scores.shape)
+    return Pose2D(guess.x + float(metres[c]), guess.y + float(metres[r]), float(thetas[k]))
