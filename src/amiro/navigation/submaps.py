@@ -158,9 +158,9 @@ def odometry_window(step: Pose2D, p: SlamParams) -> SearchWindow:
 
 
 def _sigmas(pose: Pose2D, guess: Pose2D, sigma: SearchWindow) -> float:
-    """How many sigmas ``pose`` is from ``guess`` (the larger of position and heading)."""
-    d_theta = abs(math.remainder(pose.theta - guess.theta, math.tau))
-    return max(pose.distance_to(guess) / sigma.xy, d_theta / sigma.theta)
+    """How many sigmas ``pose`` is from ``guess``, in position: a heading gate refused a fifth
+    of the matches of the densely sampled Freiburg 079 log (ATE 10.3 m, 1.4 m without)."""
+    return pose.distance_to(guess) / sigma.xy
 
 
 def correlative_guess(
