@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
+from amiro.activity.skeleton import JOINTS, NUM_JOINTS, FloatArray, J
 
 REGIONS: dict[str, tuple[int, ...]] = {
     "legs": tuple(J[n] for s in ("Left", "Right") for n in (f"Knee{s}", f"Ankle{s}", f"Foot{s}")),
@@ -29,6 +29,20 @@ REGIONS: dict[str, tuple[int, ...]] = {
     ),
     "head": (J["Head"], J["Neck"]),
 }
+
+
+# Each joint's mirror image: left and right swapped.
+MIRROR = tuple(
+    J[n.replace("Left", "Right")] if "Left" in n else J[n.replace("Right", "Left")] for n in JOINTS
+)
+
+
+def mirror(frames: FloatArray) -> FloatArray:
+    """The mirror image across the sensor's x = 0 plane: a right-handed performance
+    becomes a left-handed one."""
+    out = frames[:, list(MIRROR)].copy()
+    out[..., 0] *= -1.0
+    return out
 
 
 def drop_joints(frames: FloatArray, fraction: float, rng: np.random.Generator) -> FloatArray:
