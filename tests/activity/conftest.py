@@ -31,3 +31,15 @@ def real_har() -> Path:
     if os.environ.get("CI"):
         pytest.fail(f"no shared/data/har beside {root}: CI must provide ../shared")
     pytest.skip(f"no shared/data/har beside {root} (real skeleton sets)")
+
+
+@pytest.fixture(scope="session")
+def tiny_open_set_model(tmp_path_factory: pytest.TempPathFactory, real_har: Path) -> ActivityModel:
+    """A few steps on the real sets too: the ``unknown`` outcome and a validated threshold."""
+    out: Path = tmp_path_factory.mktemp("har_open") / "tiny.onnx"
+    train(
+        TrainConfig(
+            out=out, epochs=1, hidden=16, per_cell=1, max_steps=3, progress=False, real=real_har
+        )
+    )
+    return ActivityModel(out)

@@ -141,3 +141,34 @@ def load(root: Path, sets: tuple[str, ...] = SETS, progress: bool = False) -> li
             print(f"reading {name} from {path}", file=sys.stderr)
         clips.extend(reader(path))
     return clips
+
+
+# Who trains, who picks the threshold, who tests.  Florence 3D is never trained on: the
+# cross-dataset test.  Within the other sets whole subjects are held out (cross-subject);
+# CITI's subject 11 holds the sequences with outlier frames and trains.
+ROLES: dict[str, dict[str, frozenset[int]]] = {
+    "kard": {
+        "train": frozenset(range(1, 7)),
+        "validation": frozenset({7}),
+        "test": frozenset({8, 9, 10}),
+    },
+    "cad60": {"train": frozenset({1, 2}), "validation": frozenset({3}), "test": frozenset({4})},
+    "citi": {
+        "train": frozenset({1, 2, 3, 4, 5, 6, 11}),
+        "validation": frozenset({7}),
+        "test": frozenset({8, 9, 10}),
+    },
+    "florence3d": {
+        "train": frozenset(),
+        "validation": frozenset(),
+        "test": frozenset(range(1, 11)),
+    },
+}
+
+
+def role(clip: Clip) -> str:
+    """``train``, ``validation`` or ``test``: where a clip serves."""
+    for name, subjects in ROLES[clip.dataset].items():
+        if clip.subject in subjects:
+            return name
+    return "test"
