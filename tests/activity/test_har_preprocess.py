@@ -99,3 +99,12 @@ def test_drinking_holds_the_cup_head_back_and_sneezing_jerks_forward_briefly() -
     assert drink[:, 1].min() > 0.03 > sneeze[:, 1].max()
     assert sneeze[:, 2].min() > 1.2 > drink[:, 2].max()
     assert np.ptp(drink[:, 0]) > 0.5 and np.ptp(sneeze[:, 2]) > 1.0  # varied, not one template
+
+
+def test_view_normalisation_removes_camera_pitch_and_height() -> None:
+    rng = np.random.default_rng(5)
+    body_frames = perform("hand_waving", Body.random(rng), rng)
+    level = preprocess(to_camera(body_frames, View(height=0.9)))
+    for pitch, height in ((0.35, 1.6), (-0.2, 0.5)):
+        pitched = preprocess(to_camera(body_frames, View(pitch=pitch, height=height)))
+        np.testing.assert_allclose(level, pitched, atol=1e-6)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
+from amiro.activity.skeleton import JOINTS, NUM_JOINTS, FloatArray, J
 
 REGIONS: dict[str, tuple[int, ...]] = {
     "legs": tuple(J[n] for s in ("Left", "Right") for n in (f"Knee{s}", f"Ankle{s}", f"Foot{s}")),
@@ -29,6 +29,20 @@ REGIONS: dict[str, tuple[int, ...]] = {
     ),
     "head": (J["Head"], J["Neck"]),
 }
+
+
+# Each joint's mirror image: left and right swapped.
+MIRROR = tuple(
+    J[n.replace("Left", "Right")] if "Left" in n else J[n.replace("Right", "Left")] for n in JOINTS
+)
+
+
+def mirror(frames: FloatArray) -> FloatArray:
+    """The mirror image across the sensor's x = 0 plane: a right-handed performance
+    becomes a left-handed one."""
+    out = frames[:, list(MIRROR)].copy()
+    out[..., 0] *= -1.0
+    return out
 
 
 def drop_joints(frames: FloatArray, fraction: float, rng: np.random.Generator) -> FloatArray:
@@ -67,3 +81,37 @@ def augment(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
     if pick < 0.8:
         return flicker(frames, rng.uniform(0.05, 0.4), rng)
     return occlude(frames, rng)
+
+
+# The joints a Kinect v1 never gives (see kinect_v1.py): real training data lacks them, so
+# synthetic windows sometimes do too, and the model learns not to rely on them.
+KINECT_V1_UNSEEN = tuple(
+    J[n] for s in ("Left", "Right") for n in (f"HandTip{s}", f"Thumb{s}", f"Foot{s}")
+)
+
+
+def pitch(frames: FloatArray, angle: float) -> FloatArray:
+    """The skeleton as a camera pitched by ``angle`` (rad, about its x axis) sees it."""
+    c, s = np.cos(angle), np.sin(angle)
+    y, z = frames[..., 1], frames[..., 2]
+    out: FloatArray = np.stack([frames[..., 0], c * y - s * z, s * y + c * z], axis=-1)
+    return out
+
+
+def augment_real(
+    frames: FloatArray, rng: np.random.Generator, pitch_rad: float = 0.5
+) -> FloatArray:
+    """A real window made new: mirrored (the other hand) half the time, another camera
+    pitch, up to 2 cm of jitter, then :func:`augment`'s missing joints."""
+    out = mirror(frames) if rng.random() < 0.5 else frames
+    out = pitch(out, rng.uniform(-pitch_rad, pitch_rad))
+    out = out + rng.normal(0.0, rng.uniform(0.0, 0.02), out.shape)
+    return augment(out, rng)
+
+
+def augment_synthetic(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
+    """Half the synthetic windows without the joints a Kinect v1 lacks, then :func:`augment`."""
+    if rng.random() < 0.5:
+        frames = frames.copy()
+        frames[:, list(KINECT_V1_UNSEEN)] = np.nan
+    return augment(frames, rng)

@@ -32,7 +32,9 @@ class ActivityConfig(Section):
     )
     model: Path | None = Field(default=None, description="ONNX model; default: the shipped one")
     window_frames: int = Field(default=30, ge=2, le=300, description="frames per decision")
-    min_confidence: float = Field(default=0.5, ge=0.0, le=1.0)
+    min_confidence: float | None = Field(
+        default=None, ge=0.0, le=1.0, description="default: the model's validated threshold"
+    )
     min_visible: float = Field(
         default=0.6, ge=0.0, le=1.0, description="share of joints seen to try classifying"
     )

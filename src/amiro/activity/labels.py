@@ -28,4 +28,7 @@ NTU_ACTION_IDS: dict[str, int] = {
     "touch_chest": 45,
     "falling": 43,
 }
+# The model's extra outcome for every other action (trained on real examples of them):
+# the recogniser reports no activity for it.
+UNKNOWN = "unknown"
 IDLE = "idle"  # the simulated residents' resting state: not a class of the model

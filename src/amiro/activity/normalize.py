@@ -90,6 +90,32 @@ def normalize_bones(frames: FloatArray) -> FloatArray:
     return out
 
 
+# Real cameras look down 10-30 deg: a trunk tilted further from the camera's vertical than
+# this is the person's doing (lying, bending), kept rather than levelled away.
+MAX_TILT = 0.6
+_TRUNK = (J["SpineShoulder"], J["Neck"], J["SpineMid"])
+
+
+def _up(frame: FloatArray, origin: FloatArray) -> FloatArray:
+    """The body's vertical: the trunk's direction, tilted from the camera's vertical by
+    :data:`MAX_TILT` at most (the camera's vertical when no trunk joint is seen)."""
+    vertical = np.array([0.0, 1.0, 0.0])
+    for joint in _TRUNK:
+        trunk = frame[joint] - origin
+        norm = float(np.linalg.norm(trunk))
+        if np.isnan(trunk).any() or norm < 1e-6:
+            continue
+        trunk = np.asarray(trunk / norm, dtype=np.float64)
+        tilt = float(np.arccos(np.clip(trunk[1], -1.0, 1.0)))
+        if tilt <= MAX_TILT:
+            return trunk
+        side = trunk - trunk[1] * vertical
+        side /= max(float(np.linalg.norm(side)), 1e-9)
+        out: FloatArray = np.cos(MAX_TILT) * vertical + np.sin(MAX_TILT) * side
+        return out
+    return vertical
+
+
 @dataclass(frozen=True)
 class ViewFrame:
     """A body-centred frame: origin at the root, the body's left-right axis along x."""
@@ -99,11 +125,14 @@ class ViewFrame:
 
     @staticmethod
     def of(frame: FloatArray) -> ViewFrame:
-        """The view frame of one (bone-normalised) skeleton, from its hips and shoulders."""
+        """The view frame of one (bone-normalised) skeleton: up along its trunk (which
+        removes the camera's pitch), x along its hips and shoulders (the camera's
+        heading), the origin at its root (the camera's height and distance)."""
         origin = frame[J["SpineBase"]]
         if np.isnan(origin).any():
             seen = frame[visible(frame[None])[0]]
             origin = seen.mean(axis=0) if len(seen) else np.zeros(3)
+        up = _up(frame, origin)
         # The body's left-right axis from shoulders and hips together: a lifted hip often
         # takes the depth of the hand or thigh in front of it, and the 0.34 m shoulder
         # baseline outweighs the 0.16 m hip one.
@@ -112,14 +141,13 @@ class ViewFrame:
             pair = frame[J[right]] - frame[J[left]]
             if not np.isnan(pair).any():
                 across += pair
-        yaw = (
-            float(np.arctan2(across[2], across[0]))
-            if np.hypot(across[0], across[2]) > 1e-6
-            else 0.0
-        )
-        c, s = np.cos(yaw), np.sin(yaw)
-        # Rotation about the vertical (y) axis taking the across vector onto +x.
-        rotation = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+        across -= (across @ up) * up
+        norm = float(np.linalg.norm(across))
+        if norm < 1e-6:  # no pair seen: keep the camera's heading
+            across = np.array([1.0, 0.0, 0.0]) - up[0] * up
+            norm = float(np.linalg.norm(across))
+        x = across / norm
+        rotation = np.stack([x, up, np.cross(x, up)])
         return ViewFrame(np.asarray(origin, dtype=np.float64), rotation)
 
     @staticmethod

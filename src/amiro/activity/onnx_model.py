@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import onnxruntime as ort
 
+from amiro.activity.labels import UNKNOWN
 from amiro.activity.normalize import ViewFrame, first_view, preprocess_batch, view_features
 from amiro.activity.skeleton import FloatArray
 from amiro.core.config import ConfigError
@@ -24,6 +25,7 @@ METADATA_KEY = "amiro_activity"
 # 2-4 m from a Kinect v2): the framing RecognizeActivity moves the base to reproduce.
 BOX_HEIGHT_RANGE = (0.45, 0.85)
 MODEL_FILE = "har_multistage_lstm.onnx"
+DEFAULT_THRESHOLD = 0.5  # a model without a validated threshold
 
 
 def shipped_model_path() -> Path:
@@ -32,12 +34,17 @@ def shipped_model_path() -> Path:
 
 @dataclass(frozen=True)
 class ModelInfo:
+    """What the ONNX metadata says: ``classes`` are the network's outputs (amiro's
+    activities, then ``unknown`` when the model has that outcome); ``threshold`` the
+    confidence below which it reports no activity, chosen on validation data."""
+
     classes: tuple[str, ...]
     fps: float
     hidden: int
     stages: int
     features: int
     box_height_fraction: tuple[float, float]
+    threshold: float = DEFAULT_THRESHOLD
 
 
 class ActivityModel:
@@ -69,11 +76,27 @@ class ActivityModel:
             int(meta["stages"]),
             int(meta["features"]),
             (float(meta["box_height_fraction"][0]), float(meta["box_height_fraction"][1])),
+            float(meta.get("threshold", DEFAULT_THRESHOLD)),
         )
 
     @property
-    def classes(self) -> tuple[str, ...]:
+    def outcomes(self) -> tuple[str, ...]:
+        """Every output of the network, ``unknown`` included when it has one."""
         return self.info.classes
+
+    @property
+    def classes(self) -> tuple[str, ...]:
+        """The activities the model recognises (its outcomes but ``unknown``)."""
+        return tuple(c for c in self.info.classes if c != UNKNOWN)
+
+    def decide(self, probs: np.ndarray, threshold: float | None = None) -> tuple[str | None, float]:
+        """The activity of one probability vector and its confidence; None when the
+        model says ``unknown`` or is less sure than ``threshold`` (default: the model's)."""
+        best = int(np.argmax(probs))
+        confidence = float(probs[best])
+        label = self.outcomes[best]
+        floor = self.info.threshold if threshold is None else threshold
+        return (None if label == UNKNOWN or confidence < floor else label), confidence
 
     def zero_state(self, batch: int) -> tuple[np.ndarray, np.ndarray]:
         shape = (self.info.stages, batch, self.info.hidden)

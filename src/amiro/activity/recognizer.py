@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from typing import Protocol
 
-import numpy as np
-
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.ports import ActivityReading
+from amiro.activity.posture import FallLatch
 from amiro.activity.skeleton import FloatArray, visible
 
 
@@ -27,7 +26,9 @@ class SkeletonActivityRecognizer:
     """Classifies the last ``window_frames`` skeletons of a person with the ONNX model.
 
     Too few joints seen (``min_visible``) reports an incomplete skeleton instead of a guess;
-    a winning class below ``min_confidence`` reports no label.
+    the ``unknown`` outcome, or a winning class below ``min_confidence`` (default: the
+    model's validated threshold), reports no label; "falling" needs a body ending flat,
+    and holds while it stays down (:class:`amiro.activity.posture.FallLatch`).
     """
 
     def __init__(
@@ -35,7 +36,7 @@ class SkeletonActivityRecognizer:
         source: SkeletonSource,
         model: ActivityModel,
         window_frames: int = 30,
-        min_confidence: float = 0.5,
+        min_confidence: float | None = None,
         min_visible: float = 0.6,
     ) -> None:
         self.source = source
@@ -44,6 +45,7 @@ class SkeletonActivityRecognizer:
         self.min_confidence = min_confidence
         self.min_visible = min_visible
         self.box_range: tuple[float, float] | None = model.info.box_height_fraction
+        self.falls = FallLatch()
 
     def observe(self, person: str) -> ActivityReading:
         framing = self.source.framing(person)
@@ -51,8 +53,6 @@ class SkeletonActivityRecognizer:
         frames = self.source.window(person, self.window_frames)
         if frames is None or float(visible(frames).mean()) < self.min_visible:
             return ActivityReading(None, 0.0, False, box, clipped)
-        probs = self.model.classify(frames)
-        best = int(np.argmax(probs))
-        confidence = float(probs[best])
-        label = self.model.classes[best] if confidence >= self.min_confidence else None
+        label, confidence = self.model.decide(self.model.classify(frames), self.min_confidence)
+        label = self.falls(person, label, frames)
         return ActivityReading(label, confidence, True, box, clipped)

@@ -21,7 +21,14 @@ def register(sub: Subcommands) -> None:
         cmds,
         "train",
         _train,
-        help="train the multi-stage LSTM on synthetic motion and export ONNX (needs torch)",
+        help="train the multi-stage LSTM (real skeleton sets and synthetic motion) and export "
+        "ONNX (needs torch)",
+    )
+    train.add_argument(
+        "--real",
+        type=Path,
+        help="folder of the real skeleton sets (kard/, florence3d/, cad60/, citi/); "
+        "without it: synthetic motion only, no unknown outcome",
     )
     train.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
     train.add_argument("--checkpoints", type=Path, help="folder for per-epoch checkpoints")
@@ -45,6 +52,17 @@ def register(sub: Subcommands) -> None:
     )
     evaluate.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
     evaluate.add_argument("--ntu", type=Path, help="a folder of NTU RGB+D .skeleton files")
+    evaluate.add_argument(
+        "--real",
+        type=Path,
+        help="the real Kinect v1 sets' folder (kard/, florence3d/, cad60/, citi/): "
+        "cross-subject and cross-dataset, open set, false fall alerts",
+    )
+    evaluate.add_argument(
+        "--all-clips",
+        action="store_true",
+        help="with --real: score every clip (a model that never trained on these sets)",
+    )
     evaluate.add_argument("--seed", type=int, default=1000)
 
     read = add_command(cmds, "read", _read, help="parse one NTU RGB+D .skeleton file")
@@ -70,6 +88,8 @@ def _train(args: argparse.Namespace) -> int:
 
     for name in ("epochs", "hidden", "per_cell", "max_steps"):
         _positive(getattr(args, name), "--" + name.replace("_", "-"))
+    if args.real is not None and not args.real.is_dir():
+        raise ConfigError(f"--real {args.real}: no such folder")
     try:
         from amiro.activity.train import TrainConfig, train
     except ImportError as exc:
@@ -85,6 +105,7 @@ def _train(args: argparse.Namespace) -> int:
             per_cell=args.per_cell,
             max_steps=args.max_steps,
             checkpoints=args.checkpoints,
+            real=args.real,
         )
     )
     if args.json:
@@ -113,10 +134,20 @@ def _export(args: argparse.Namespace) -> int:
 
 def _evaluate(args: argparse.Namespace) -> int:
     from amiro.activity.onnx_model import ActivityModel
-    from amiro.evaluation.activity_evaluate import evaluate_ntu, evaluate_synthetic, format_report
+    from amiro.evaluation.activity_evaluate import (
+        evaluate_ntu,
+        evaluate_real_sets,
+        evaluate_synthetic,
+        format_report,
+    )
 
     model = ActivityModel(args.model)
-    report = evaluate_ntu(model, args.ntu) if args.ntu else evaluate_synthetic(model, args.seed)
+    if args.ntu:
+        report = evaluate_ntu(model, args.ntu)
+    elif args.real:
+        report = evaluate_real_sets(model, args.real, args.all_clips)
+    else:
+        report = evaluate_synthetic(model, args.seed)
     if args.json:
         emit_json(report)
     else:

@@ -1,4 +1,5 @@
-"""``amiro har evaluate``: the paper's Table 15 protocols on held-out synthetic data or NTU.
+"""``amiro har evaluate``: the paper's Table 15 protocols on held-out synthetic data, NTU
+files, or the real Kinect v1 sets (``--real``: cross-subject and cross-dataset, open set).
 
 Cross-subject scores subjects never trained on, cross-view camera positions never trained
 on; the missing-joint rows hide the same random share of joints over a whole window;
@@ -10,6 +11,7 @@ no feet) with the head pitched down by 0.2 rad (the ``camera-onnx`` backend's pa
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -23,18 +25,43 @@ from amiro.activity.dataset import (
     TRAIN_SUBJECTS,
     generate,
 )
-from amiro.activity.labels import ACTIONS, NTU_ACTION_IDS
+from amiro.activity.labels import ACTIONS, NTU_ACTION_IDS, UNKNOWN
 from amiro.activity.ntu import NTU_NAME, read_skeleton_file
 from amiro.activity.onnx_model import ActivityModel
+from amiro.activity.real_sets import load, role
 from amiro.activity.render import through_pose_estimator
 from amiro.activity.skeleton import FloatArray
 from amiro.core.config import ConfigError
+from amiro.evaluation.activity_real import (
+    clip_outcomes_of,
+    decider,
+    evaluate_real,
+    fall_alerts_per_hour,
+    open_set_scores,
+    simulated_falls,
+    stitch,
+)
 from amiro.robot.camera import Camera
 
 EVAL_FRAMES = 30  # 2 s at the model's 15 Hz
 MISSING_FRACTIONS = (0.1, 0.2, 0.3, 0.5)
 COCO_PITCH = 0.2  # rad down: the head looking at a person 2-3 m away
 PAPER = {"cross_subject": 0.9227, "cross_view": 0.9163}
+# Table 15 with its protocols: T2 trained on NTU RGB+D and tested on the authors' Pepper
+# recordings (a cross-dataset test), T3 the same fine-tuned on those recordings.
+PAPER_ROWS = {
+    "T2 trained on NTU RGB+D, tested on Pepper recordings (cross-dataset)": (0.6037, 0.4560),
+    "T3 NTU RGB+D fine-tuned on Pepper recordings": (0.9227, 0.9163),
+}
+# The issue's targets on real data, open set.
+REAL_TARGETS = {
+    "known_accuracy": 0.85,
+    "unknown_rejection": 0.90,
+    "fall_alerts_per_hour": 1.0,
+    "simulated_falls_within_2s": 0.95,
+    "missing_joints_0.3": 0.75,
+}
+MISSING_SEED = 1000
 TARGETS = {"cross_subject": 0.95, "cross_view": 0.95, "missing_joints_0.3": 0.85}
 # NTU RGB+D's cross-subject training performers; the others are its test subjects.
 NTU_TRAIN_SUBJECTS = frozenset(
@@ -44,21 +71,24 @@ NTU_TEST_CAMERA = 1
 
 
 def predict(model: ActivityModel, windows: list[FloatArray], batch: int = 256) -> np.ndarray:
-    """Predicted class per window; windows of equal length are batched."""
+    """The recogniser's decision per window as an index into ACTIONS, ``len(ACTIONS)``
+    for no activity (unknown or unsure); windows of equal length are batched."""
     out = np.empty(len(windows), dtype=np.int64)
     for length in {len(w) for w in windows}:
         idx = [i for i, w in enumerate(windows) if len(w) == length]
         for s in range(0, len(idx), batch):
             part = idx[s : s + batch]
             probs = model.classify_batch(np.stack([windows[i] for i in part]))
-            out[part] = probs.argmax(axis=1)
+            said = [model.decide(p)[0] for p in probs]
+            out[part] = [len(ACTIONS) if a is None else ACTIONS.index(a) for a in said]
     return out
 
 
 def confusion(labels: np.ndarray, predicted: np.ndarray) -> dict[str, Any]:
-    matrix = np.zeros((len(ACTIONS), len(ACTIONS)), dtype=np.int64)
+    """Rows true, columns said; the last row and column are ``unknown`` (no activity)."""
+    matrix = np.zeros((len(ACTIONS) + 1, len(ACTIONS) + 1), dtype=np.int64)
     np.add.at(matrix, (labels, predicted), 1)
-    return {"labels": list(ACTIONS), "matrix": matrix.tolist()}
+    return {"labels": [*ACTIONS, UNKNOWN], "matrix": matrix.tolist()}
 
 
 def _accuracy(model: ActivityModel, windows: list[FloatArray], labels: np.ndarray) -> float:
@@ -110,50 +140,115 @@ def evaluate_synthetic(model: ActivityModel, seed: int = 1000) -> dict[str, Any]
 
 
 def evaluate_ntu(model: ActivityModel, folder: Path, seed: int = 1000) -> dict[str, Any]:
-    """The same metrics on real NTU RGB+D files of amiro's nine actions (30 Hz -> 15 Hz)."""
+    """Every readable NTU RGB+D file (30 Hz -> 15 Hz), whatever its action: the open-set
+    scores over all of them, the fall monitor over all of them as one stream, and the
+    cross-subject / cross-view accuracy over those of amiro's actions."""
     _check_classes(model)
     if not folder.is_dir():
         raise ConfigError(f"{folder}: no such folder")
-    by_id = {ntu: ACTIONS.index(name) for name, ntu in NTU_ACTION_IDS.items()}
+    by_id = {ntu: name for name, ntu in NTU_ACTION_IDS.items()}
     windows: list[FloatArray] = []
-    labels, subjects, cameras = [], [], []
+    truth: list[str | None] = []
+    subjects, cameras = [], []
     for path in sorted(folder.rglob("*.skeleton")):
         m = NTU_NAME.search(path.name)
-        if m is None or int(m.group(5)) not in by_id:
+        if m is None:
             continue
-        body = read_skeleton_file(path).main_body()
+        try:
+            body = read_skeleton_file(path).main_body()
+        except ConfigError as exc:  # one bad file does not spoil the rest
+            print(f"skipped: {exc}", file=sys.stderr)
+            continue
         frames = body.joints[body.present][::2]
         if len(frames) == 0:
             continue
         windows.append(frames)
-        labels.append(by_id[int(m.group(5))])
+        truth.append(by_id.get(int(m.group(5))))
         cameras.append(int(m.group(2)))
         subjects.append(int(m.group(3)))
     if not windows:
-        ids = ", ".join(f"A{i:03d}" for i in sorted(by_id))
-        raise ConfigError(f"{folder}: no NTU .skeleton files of the actions {ids}")
-    y = np.array(labels)
-    pred = predict(model, windows)
-    cs = np.array([s not in NTU_TRAIN_SUBJECTS for s in subjects])
-    cv = np.array(cameras) == NTU_TEST_CAMERA
+        raise ConfigError(f"{folder}: no readable NTU .skeleton files")
+    decide = decider(model)
+    said = clip_outcomes_of(decide, windows)
+    report = open_set_scores(truth, said)
+    falls = fall_alerts_per_hour(decide, [stitch(windows)])
+    known = np.array([t is not None for t in truth])
+    y = np.array([ACTIONS.index(t) if t is not None else len(ACTIONS) for t in truth])
+    pred = np.array([ACTIONS.index(p) if p is not None else len(ACTIONS) for p in said])
+    cs = known & np.array([s not in NTU_TRAIN_SUBJECTS for s in subjects])
+    cv = known & (np.array(cameras) == NTU_TEST_CAMERA)
     cs_windows = [w for w, keep in zip(windows, cs, strict=True) if keep]
 
     def acc(mask: np.ndarray) -> float | None:
         return round(float((pred[mask] == y[mask]).mean()), 4) if mask.any() else None
 
-    return {
-        "data": "ntu",
-        "files": len(windows),
-        "cross_subject": acc(cs),
-        "cross_view": acc(cv),
-        "all": acc(np.ones(len(y), bool)),
-        "confusion": confusion(y, pred),
-        "missing_joints": _missing(model, cs_windows, y[cs], seed) if cs_windows else {},
-        "paper": PAPER,
-    }
+    report.update(
+        {
+            "data": "ntu",
+            "fall_alerts_per_hour": falls["per_hour"],
+            "fall_alerts": falls,
+            "cross_subject": acc(cs),
+            "cross_view": acc(cv),
+            "all": acc(known),
+            "missing_joints": _missing(model, cs_windows, y[cs], seed) if cs_windows else {},
+            "paper": PAPER,
+        }
+    )
+    return report
+
+
+def evaluate_real_sets(
+    model: ActivityModel, root: Path, all_clips: bool = False, progress: bool = True
+) -> dict[str, Any]:
+    """The real Kinect v1 sets under ``root``: held-out subjects and the held-out set (or
+    every clip, for a model that never saw real data), beside Table 15's protocols."""
+    _check_classes(model)
+    if not root.is_dir():
+        raise ConfigError(f"{root}: no such folder")
+    clips = load(root, progress=progress)
+    report = evaluate_real(model, clips, not all_clips, progress)
+    decide = decider(model)
+    report["simulated_falls"] = simulated_falls(decide)
+    # 30 % of the joints hidden (the same ones over a whole clip) on the scored clips
+    rng = np.random.default_rng(MISSING_SEED)
+    scored = [c for c in clips if all_clips or role(c) == "test"]
+    hidden = [drop_joints(c.frames, 0.3, rng) for c in scored]
+    report["missing_joints_0.3"] = open_set_scores(
+        [c.label for c in scored], clip_outcomes_of(decide, hidden)
+    )["known_accuracy"]
+    report["paper_table15"] = PAPER_ROWS
+    report["targets"] = REAL_TARGETS
+    return report
+
+
+def format_real(report: dict[str, Any]) -> str:
+    lines = ["protocol                                           known   unknown-rejection  files"]
+    for scores in report["sets"].values():
+        lines.append(
+            f"{scores['protocol']:<50} {scores['known_accuracy']!s:>6}  "
+            f"{scores['unknown_rejection']!s:>8}           {scores['files']}"
+        )
+    falls = report["fall_alerts"]
+    lines.append(
+        f"false fall alerts: {falls['alerts']} in {falls['hours']} h of real activity "
+        f"= {falls['per_hour']} per hour"
+    )
+    sim = report["simulated_falls"]
+    lines.append(
+        f"simulated falls (synthetic, held-out bodies) alerted within "
+        f"{sim['detected_within_s']} s: {sim['detected']} (median {sim['median_delay_s']} s)"
+    )
+    lines.append(f"known accuracy with 30 % of joints hidden: {report['missing_joints_0.3']}")
+    lines.append("paper, Table 15 (their Pepper recordings, closed set: accuracy only):")
+    for row, (cs, cv) in report["paper_table15"].items():
+        lines.append(f"  {row}: cross-subject {cs}, cross-view {cv}")
+    lines.append(f"targets (open set, real data): {report['targets']}")
+    return "\n".join(lines)
 
 
 def format_report(report: dict[str, Any]) -> str:
+    if report["data"] == "real":
+        return format_real(report)
     lines = [
         f"data: {report['data']}",
         f"cross-subject accuracy: {report['cross_subject']} (paper {PAPER['cross_subject']})",
@@ -164,8 +259,15 @@ def format_report(report: dict[str, Any]) -> str:
     if "pose_estimator" in report:
         lines.append(f"through 2D keypoints + depth: {report['pose_estimator']}")
         lines.append(f"through COCO-17 keypoints, head pitched: {report['pose_estimator_coco17']}")
+    if "known_accuracy" in report:
+        lines.append(
+            f"every file: known {report['known_accuracy']}, unknown rejected "
+            f"{report['unknown_rejection']}, {report['fall_alerts_per_hour']} fall alerts/h"
+        )
     labels = report["confusion"]["labels"]
     lines.append("confusion (rows: true, columns: predicted):")
     for name, row in zip(labels, report["confusion"]["matrix"], strict=True):
         lines.append(f"  {name:>13} " + " ".join(f"{v:4d}" for v in row))
+    if report["data"] == "synthetic":
+        lines.append("(synthetic motion: not comparable with the paper's real recordings)")
     return "\n".join(lines)
