@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from amiro.commands.support import add_command, add_group, emit_report
 
@@ -20,7 +20,13 @@ def register(sub: Subcommands) -> None:
     ev = add_command(
         nlu, "evaluate", _evaluate_nlu, help="accuracy over labelled utterances (JSON lines)"
     )
-    ev.add_argument("file", type=Path, help='JSONL: {"lang", "text", "intent", "entities"}')
+    ev.add_argument(
+        "file",
+        type=Path,
+        nargs="*",
+        help='JSONL: {"lang", "text", "intent", "entities"} or MASSIVE records (mapped onto '
+        "amiro's labels); default: amiro's held-out files in en, ro and fr",
+    )
 
     asr = add_group(sub, "asr", "speech recognition", dest="asr_command")
     aev = add_command(
@@ -81,17 +87,34 @@ def _parse(args: argparse.Namespace) -> int:
 
 
 def _evaluate_nlu(args: argparse.Namespace) -> int:
-    from amiro.dialogue.nlu_eval import evaluate, read_jsonl
+    import sys
+
+    from amiro.dialogue.massive import read_labelled
+    from amiro.dialogue.nlu_eval import evaluate, shipped_eval_files
     from amiro.dialogue.understanding import Nlu
 
+    files = args.file or shipped_eval_files()
+    rows = [row for path in files for row in read_labelled(path)]
     nlu = Nlu()
-    report = evaluate(read_jsonl(args.file), lambda lang, text: nlu.parse(text, lang))
-    text = "\n".join(
-        f"{lang}: n={r['n']} intent {100 * r['intent_accuracy']:.1f}% "
-        f"entities {100 * r['entity_accuracy']:.1f}% {r['ms_per_utterance']:.2f} ms/utt"
-        for lang, r in report.items()
-    )
+
+    def progress(lang: str, done: int, total: int) -> None:
+        if total >= 500:
+            print(f"{lang}: {done}/{total}", file=sys.stderr, flush=True)
+
+    report = evaluate(rows, lambda lang, text: nlu.parse(text, lang), progress)
+    text = "\n".join(f"{lang}: {_describe(r)}" for lang, r in report.items())
     return emit_report(args, report, text)
+
+
+def _describe(r: dict[str, Any]) -> str:
+    def pct(key: str) -> str:
+        return "-" if r[key] is None else f"{100 * r[key]:.1f}%"
+
+    return (
+        f"n={r['n']} intent {pct('intent_accuracy')} entities {pct('entity_accuracy')} "
+        f"in scope {pct('in_scope_accuracy')} out-of-scope refused "
+        f"{pct('out_of_scope_rejection')} {r['ms_per_utterance']:.2f} ms/utt"
+    )
 
 
 def _evaluate_asr(args: argparse.Namespace) -> int:
