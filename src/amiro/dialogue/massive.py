@@ -74,14 +74,16 @@ def read_massive(path: Path) -> list[Labelled]:
 
 
 def massive_dir() -> Path | None:
-    """Where the MASSIVE partitions are: ``$AMIRO_MASSIVE_DIR``, else ``../shared/data/nlu/massive``
-    beside the source checkout (CI and development); None when neither exists."""
+    """Where the MASSIVE partitions are: ``$AMIRO_MASSIVE_DIR``, else ``shared/data/nlu/massive``
+    beside the source checkout or one of its parents (``../shared`` in CI); None when absent."""
     env = os.environ.get(ENV_DIR)
     if env:
         return Path(env) if Path(env).is_dir() else None
-    for parent in Path(__file__).resolve().parents:
-        candidate = parent.parent / "shared" / "data" / "nlu" / "massive"
-        if (parent / "pyproject.toml").is_file() and candidate.is_dir():
+    here = Path(__file__).resolve().parents
+    root = next((p for p in here if (p / "pyproject.toml").is_file()), None)
+    for parent in () if root is None else root.parents:
+        candidate = parent / "shared" / "data" / "nlu" / "massive"
+        if candidate.is_dir():
             return candidate
     return None
 

@@ -3,22 +3,37 @@ speaker's profile or the language the utterance was heard in.  Implements the Li
 
 from __future__ import annotations
 
+import logging
 from functools import cache
 from pathlib import Path
 
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.entities import Entity
+from amiro.dialogue.massive import ENV_DIR, massive_partition, read_massive
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse
 from amiro.dialogue.phrases import check_language
 from amiro.dialogue.profiles import SpeakerProfile, language_of
 from amiro.dialogue.training_data import load_training_data, shipped_training_data
 from amiro.home.household import LANGUAGES
 
+log = logging.getLogger(__name__)
+
+
+@cache
+def real_examples(lang: str) -> tuple[tuple[str, str], ...]:
+    """MASSIVE's train partition in amiro's labels when it is found (``massive_dir``): real
+    phrasing of weather, calendar, lights and greetings, and real out-of-scope requests."""
+    path = massive_partition(lang, "train")
+    if path is None:
+        log.warning("MASSIVE not found (set %s): NLU trained on amiro's data only", ENV_DIR)
+        return ()
+    return tuple((r.text, r.intent) for r in read_massive(path))
+
 
 @cache
 def shipped_model(lang: str, threshold: float = DEFAULT_THRESHOLD) -> LanguageNlu:
     """Trained once per process: the shipped data never changes at run time."""
-    return LanguageNlu(shipped_training_data(lang), threshold)
+    return LanguageNlu(shipped_training_data(lang), threshold, real_examples(lang))
 
 
 class Nlu:
@@ -39,7 +54,8 @@ class Nlu:
         if path is None:
             return shipped_model(lang, self.threshold)
         if lang not in self._custom:
-            self._custom[lang] = LanguageNlu(load_training_data(path), self.threshold)
+            data = load_training_data(path)
+            self._custom[lang] = LanguageNlu(data, self.threshold, real_examples(lang))
         return self._custom[lang]
 
     def parse(self, text: str, lang: str) -> Parse:
