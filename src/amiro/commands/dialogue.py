@@ -68,6 +68,7 @@ def register(sub: Subcommands) -> None:
     )
     chat.add_argument("--lang", default="en", help="en, ro or fr (default en)")
     chat.add_argument("--voice", action="store_true", help="speak through the microphone")
+    chat.add_argument("--debug", action="store_true", help="also show the intent and entities")
 
 
 def _parse(args: argparse.Namespace) -> int:
@@ -181,4 +182,4 @@ def _chat(args: argparse.Namespace) -> int:
     from amiro.dialogue.chat import run_chat
     from amiro.dialogue.phrases import check_language
 
-    return run_chat(check_language(args.lang), args.voice)
+    return run_chat(check_language(args.lang), args.voice, args.debug)
