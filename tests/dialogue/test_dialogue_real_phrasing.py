@@ -174,3 +174,11 @@ def test_device_entities_are_made_coherent() -> None:
     assert coherent_device({"device_state": "off"})["device_entity"] == "lights"
     assert coherent_device({"device_state": "open"})["device_entity"] == "blinds"
     assert coherent_device({"room_entity": "kitchen"}) == {"room_entity": "kitchen"}
+
+
+def test_nlu_bench_reports_training_and_turn_cost(capsys: pytest.CaptureFixture[str]) -> None:
+    report = _cli_json(["nlu", "bench", "--repeats", "1", "--json"], capsys)
+    assert set(report["training_s"]) == {"en", "ro", "fr", "total"}
+    assert set(report["turn_ms"]) == set(LANGS)
+    assert all(t["p95"] >= t["median"] > 0 for t in report["turn_ms"].values())
+    assert main(["nlu", "bench", "--repeats", "0"]) == 2

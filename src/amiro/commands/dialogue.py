@@ -28,6 +28,11 @@ def register(sub: Subcommands) -> None:
         "amiro's labels); default: amiro's held-out files in en, ro and fr",
     )
 
+    nb = add_command(
+        nlu, "bench", _bench_nlu, help="training time and ms per dialogue turn (NLU + manager)"
+    )
+    nb.add_argument("--repeats", type=int, default=3, help="passes over the held-out files")
+
     asr = add_group(sub, "asr", "speech recognition", dest="asr_command")
     aev = add_command(
         asr, "evaluate", _evaluate_asr, help="WER, sentence accuracy and RTF over WAV files"
@@ -104,6 +109,22 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
 
     report = evaluate(rows, lambda lang, text: nlu.parse(text, lang), progress)
     text = "\n".join(f"{lang}: {_describe(r)}" for lang, r in report.items())
+    return emit_report(args, report, text)
+
+
+def _bench_nlu(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.evaluation.dialogue_bench import bench
+
+    if args.repeats < 1:
+        raise ConfigError(f"--repeats {args.repeats}: must be 1 or more")
+    report = bench(args.repeats)
+    train = report["training_s"]
+    text = f"training (MASSIVE {'on' if report['massive'] else 'not found'}): " + ", ".join(
+        f"{lang} {s:.1f} s" for lang, s in train.items()
+    )
+    for lang, t in report["turn_ms"].items():
+        text += f"\n{lang}: {t['median']:.2f} ms per turn (median), {t['p95']:.2f} ms (95th pct)"
     return emit_report(args, report, text)
 
 
