@@ -16,10 +16,12 @@ from amiro.dialogue.devices import coherent_device
 from amiro.dialogue.domain import shipped_domain
 from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.massive import mapped, massive_partition, read_labelled, read_massive
+from amiro.dialogue.nlu import OUT_OF_SCOPE_MARGIN
 from amiro.dialogue.nlu_eval import evaluate, read_jsonl
 from amiro.dialogue.phrases import phrase
 from amiro.dialogue.sources import offline_sources
-from amiro.dialogue.understanding import Nlu
+from amiro.dialogue.understanding import Nlu, shipped_model
+from amiro.evaluation.dialogue_margin import sweep
 
 HOME_COMMANDS = Path(__file__).parent / "data" / "home_commands.jsonl"
 LANGS = ("en", "fr", "ro")
@@ -182,3 +184,17 @@ def test_nlu_bench_reports_training_and_turn_cost(capsys: pytest.CaptureFixture[
     assert set(report["turn_ms"]) == set(LANGS)
     assert all(t["p95"] >= t["median"] > 0 for t in report["turn_ms"].values())
     assert main(["nlu", "bench", "--repeats", "0"]) == 2
+
+
+@needs_massive
+def test_the_margin_sweep_picks_its_best_and_restores_the_model() -> None:
+    report = sweep((0.0, OUT_OF_SCOPE_MARGIN))
+    rows = {row["margin"]: row for row in report["margins"]}
+    assert report["best"] == max(rows, key=lambda m: rows[m]["score"])
+    # a larger margin refuses less: in-scope up, rejection down (or equal)
+    for lang in LANGS:
+        low, high = rows[0.0][lang], rows[OUT_OF_SCOPE_MARGIN][lang]
+        assert high["in_scope_accuracy"] >= low["in_scope_accuracy"]
+        assert high["out_of_scope_rejection"] <= low["out_of_scope_rejection"]
+    model = shipped_model("en")
+    assert max(model.offsets) == OUT_OF_SCOPE_MARGIN

@@ -33,6 +33,13 @@ def register(sub: Subcommands) -> None:
     )
     nb.add_argument("--repeats", type=int, default=3, help="passes over the held-out files")
 
+    add_command(
+        nlu,
+        "choose-margin",
+        _choose_margin,
+        help="sweep the out-of-scope margin on MASSIVE dev (validation data)",
+    )
+
     asr = add_group(sub, "asr", "speech recognition", dest="asr_command")
     aev = add_command(
         asr, "evaluate", _evaluate_asr, help="WER, sentence accuracy and RTF over WAV files"
@@ -126,6 +133,28 @@ def _bench_nlu(args: argparse.Namespace) -> int:
     for lang, t in report["turn_ms"].items():
         text += f"\n{lang}: {t['median']:.2f} ms per turn (median), {t['p95']:.2f} ms (95th pct)"
     return emit_report(args, report, text)
+
+
+def _choose_margin(args: argparse.Namespace) -> int:
+    import sys
+
+    from amiro.evaluation.dialogue_margin import sweep
+
+    def progress(lang: str, done: int, total: int) -> None:
+        if done == total:
+            print(f"{lang}: {total} dev utterances", file=sys.stderr, flush=True)
+
+    report = sweep(progress=progress)
+    lines = [
+        f"margin {m['margin']:.1f}: score {m['score']:.4f}  "
+        + "  ".join(
+            f"{lang} {100 * m[lang]['in_scope_accuracy']:.1f}/"
+            f"{100 * m[lang]['out_of_scope_rejection']:.1f}"
+            for lang in ("en", "ro", "fr")
+        )
+        for m in report["margins"]
+    ]
+    return emit_report(args, report, "\n".join([*lines, f"best: {report['best']}"]))
 
 
 def _describe(r: dict[str, Any]) -> str:
