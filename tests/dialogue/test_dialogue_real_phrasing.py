@@ -11,6 +11,7 @@ from typing import Any
 import pytest
 
 from amiro.cli import main
+from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
 from amiro.dialogue.devices import coherent_device
 from amiro.dialogue.domain import shipped_domain
@@ -198,3 +199,15 @@ def test_the_margin_sweep_picks_its_best_and_restores_the_model() -> None:
         assert high["out_of_scope_rejection"] <= low["out_of_scope_rejection"]
     model = shipped_model("en")
     assert max(model.offsets) == OUT_OF_SCOPE_MARGIN
+
+
+def test_warm_up_trains_in_the_background_and_leaves_bad_data_to_the_first_use(
+    tmp_path: Path,
+) -> None:
+    bad = tmp_path / "fr.yaml"
+    bad.write_text("nlu: not a list\n", encoding="utf-8")
+    nlu = Nlu(training_data={"fr": bad})
+    nlu.warm_up().join()
+    assert all(shipped_model(lang) is nlu.model(lang) for lang in ("en", "ro"))
+    with pytest.raises(ConfigError, match="expected a mapping"):
+        nlu.model("fr")  # the warm-up left the error to the first use
