@@ -48,7 +48,7 @@ def _classifier() -> Pipeline:
             ("words", TfidfVectorizer(analyzer="word", ngram_range=(1, 2), sublinear_tf=True)),
         ]
     )
-    model = LinearSVC(C=1.0, class_weight="balanced")
+    model = LinearSVC(C=1.0, class_weight="balanced", random_state=0)  # deterministic
     return Pipeline([("features", features), ("model", model)])
 
 
