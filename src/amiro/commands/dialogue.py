@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from amiro.commands.support import add_command, add_group, emit_report
 
@@ -20,7 +20,25 @@ def register(sub: Subcommands) -> None:
     ev = add_command(
         nlu, "evaluate", _evaluate_nlu, help="accuracy over labelled utterances (JSON lines)"
     )
-    ev.add_argument("file", type=Path, help='JSONL: {"lang", "text", "intent", "entities"}')
+    ev.add_argument(
+        "file",
+        type=Path,
+        nargs="*",
+        help='JSONL: {"lang", "text", "intent", "entities"} or MASSIVE records (mapped onto '
+        "amiro's labels); default: amiro's held-out files in en, ro and fr",
+    )
+
+    nb = add_command(
+        nlu, "bench", _bench_nlu, help="training time and ms per dialogue turn (NLU + manager)"
+    )
+    nb.add_argument("--repeats", type=int, default=3, help="passes over the held-out files")
+
+    add_command(
+        nlu,
+        "choose-margin",
+        _choose_margin,
+        help="sweep the out-of-scope margin on MASSIVE dev (validation data)",
+    )
 
     asr = add_group(sub, "asr", "speech recognition", dest="asr_command")
     aev = add_command(
@@ -62,6 +80,7 @@ def register(sub: Subcommands) -> None:
     )
     chat.add_argument("--lang", default="en", help="en, ro or fr (default en)")
     chat.add_argument("--voice", action="store_true", help="speak through the microphone")
+    chat.add_argument("--debug", action="store_true", help="also show the intent and entities")
 
 
 def _parse(args: argparse.Namespace) -> int:
@@ -81,17 +100,72 @@ def _parse(args: argparse.Namespace) -> int:
 
 
 def _evaluate_nlu(args: argparse.Namespace) -> int:
-    from amiro.dialogue.nlu_eval import evaluate, read_jsonl
+    import sys
+
+    from amiro.dialogue.massive import read_labelled
+    from amiro.dialogue.nlu_eval import evaluate, shipped_eval_files
     from amiro.dialogue.understanding import Nlu
 
+    files = args.file or shipped_eval_files()
+    rows = [row for path in files for row in read_labelled(path)]
     nlu = Nlu()
-    report = evaluate(read_jsonl(args.file), lambda lang, text: nlu.parse(text, lang))
-    text = "\n".join(
-        f"{lang}: n={r['n']} intent {100 * r['intent_accuracy']:.1f}% "
-        f"entities {100 * r['entity_accuracy']:.1f}% {r['ms_per_utterance']:.2f} ms/utt"
-        for lang, r in report.items()
-    )
+
+    def progress(lang: str, done: int, total: int) -> None:
+        if total >= 500:
+            print(f"{lang}: {done}/{total}", file=sys.stderr, flush=True)
+
+    report = evaluate(rows, lambda lang, text: nlu.parse(text, lang), progress)
+    text = "\n".join(f"{lang}: {_describe(r)}" for lang, r in report.items())
     return emit_report(args, report, text)
+
+
+def _bench_nlu(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.evaluation.dialogue_bench import bench
+
+    if args.repeats < 1:
+        raise ConfigError(f"--repeats {args.repeats}: must be 1 or more")
+    report = bench(args.repeats)
+    train = report["training_s"]
+    text = f"training (MASSIVE {'on' if report['massive'] else 'not found'}): " + ", ".join(
+        f"{lang} {s:.1f} s" for lang, s in train.items()
+    )
+    for lang, t in report["turn_ms"].items():
+        text += f"\n{lang}: {t['median']:.2f} ms per turn (median), {t['p95']:.2f} ms (95th pct)"
+    return emit_report(args, report, text)
+
+
+def _choose_margin(args: argparse.Namespace) -> int:
+    import sys
+
+    from amiro.evaluation.dialogue_margin import sweep
+
+    def progress(lang: str, done: int, total: int) -> None:
+        if done == total:
+            print(f"{lang}: {total} dev utterances", file=sys.stderr, flush=True)
+
+    report = sweep(progress=progress)
+    lines = [
+        f"margin {m['margin']:.1f}: score {m['score']:.4f}  "
+        + "  ".join(
+            f"{lang} {100 * m[lang]['in_scope_accuracy']:.1f}/"
+            f"{100 * m[lang]['out_of_scope_rejection']:.1f}"
+            for lang in ("en", "ro", "fr")
+        )
+        for m in report["margins"]
+    ]
+    return emit_report(args, report, "\n".join([*lines, f"best: {report['best']}"]))
+
+
+def _describe(r: dict[str, Any]) -> str:
+    def pct(key: str) -> str:
+        return "-" if r[key] is None else f"{100 * r[key]:.1f}%"
+
+    return (
+        f"n={r['n']} intent {pct('intent_accuracy')} entities {pct('entity_accuracy')} "
+        f"in scope {pct('in_scope_accuracy')} out-of-scope refused "
+        f"{pct('out_of_scope_rejection')} {r['ms_per_utterance']:.2f} ms/utt"
+    )
 
 
 def _evaluate_asr(args: argparse.Namespace) -> int:
@@ -158,4 +232,4 @@ def _chat(args: argparse.Namespace) -> int:
     from amiro.dialogue.chat import run_chat
     from amiro.dialogue.phrases import check_language
 
-    return run_chat(check_language(args.lang), args.voice)
+    return run_chat(check_language(args.lang), args.voice, args.debug)

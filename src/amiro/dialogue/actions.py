@@ -6,7 +6,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from amiro.dialogue.phrases import phrase
+from amiro.dialogue.devices import coherent_device
+from amiro.dialogue.phrases import local_name, phrase
 from amiro.dialogue.sources import Sources
 
 Submit = Callable[[str, dict[str, Any]], object]
@@ -50,7 +51,8 @@ class Actions:
         if found is None:
             return "answer_no_weather", {}
         condition = phrase(f"weather_{found['condition']}", lang)
-        fields = {"day_phrase": day_phrase(day, lang), "location": location}
+        place = local_name("place", location, lang)
+        fields = {"day_phrase": day_phrase(day, lang), "location": place}
         return "answer_weather", {**found, **fields, "condition": condition}
 
     def answer_calendar(self, slots: dict[str, str], user: str, lang: str) -> Answer:
@@ -63,10 +65,12 @@ class Actions:
         return "answer_calendar", {**fields, "events": listed}
 
     def control_device(self, slots: dict[str, str], user: str, lang: str) -> Answer:
-        room, device, state = slots["room_entity"], slots["device_entity"], slots["device_state"]
+        said = coherent_device(slots)  # "open" the lights, answered to "on or off?": on
+        room, device, state = said["room_entity"], said["device_entity"], said["device_state"]
         if not self.sources.devices.set(room, device, state):
             return "answer_device_unknown", {}
-        return "answer_device_done", {"device": device, "state": state, "room": room}
+        done = local_name("device", f"{device}_{state}", lang)
+        return "answer_device_done", {"device_state": done, "room": local_name("room", room, lang)}
 
     def go_to(self, slots: dict[str, str], user: str, lang: str) -> Answer:
         if self.submit is None:
@@ -74,4 +78,5 @@ class Actions:
         target = slots.get("person_entity") or slots["room_entity"]
         payload = {k: v for k, v in slots.items() if k in ("person_entity", "room_entity")}
         self.submit("go_to", {**payload, "requested_by": user, "lang": lang})
-        return "answer_go_to", {"target": target.title() if "person_entity" in slots else target}
+        said = target.title() if "person_entity" in slots else local_name("room", target, lang)
+        return "answer_go_to", {"target": said}

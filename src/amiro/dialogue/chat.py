@@ -50,9 +50,14 @@ def _spoken(lang: str) -> Iterator[str]:
                 yield heard.text
 
 
-def run_chat(lang: str, voice: bool) -> int:
+BANNER = "amiro chat ({lang}): talk to the robot; say goodbye, or Ctrl-D / Ctrl-C to quit."
+
+
+def run_chat(lang: str, voice: bool, debug: bool = False) -> int:
+    """Only the robot's reply is shown; ``debug`` adds the intent and entities understood."""
     nlu = Nlu()
     nlu.model(lang)  # train before the first prompt
+    print(BANNER.format(lang=lang), file=sys.stderr)
     got: list[tuple[str, dict[str, object]]] = []
     manager = DialogueManager(
         nlu, shipped_domain(), Actions(offline_sources(), lambda k, p: got.append((k, p)))
@@ -63,7 +68,9 @@ def run_chat(lang: str, voice: bool) -> int:
                 continue
             answer = manager.handle(text, lang, "user")
             shown = " [display]" if answer.display and not answer.say else ""
-            print(f"robot> {answer.text}{shown}   ({answer.intent} {answer.entities})")
+            print(f"robot> {answer.text}{shown}")
+            if debug:
+                print(f"       ({answer.intent} {answer.entities})")
             if answer.action == "utter_goodbye":
                 break
     except KeyboardInterrupt:

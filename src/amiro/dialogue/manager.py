@@ -61,6 +61,8 @@ class DialogueManager:
             found = self.nlu.entities(text, lang, tuple(pending.rule.missing(pending.slots)))
             pending.slots.update({e.key: e.value for e in found})
             answer = self._advance(pending, lang, user, pending.rule.intent, parsed.entities)
+        elif not text.strip():  # nothing heard (speech rejected): not a request it cannot serve
+            answer = self._say("utter_not_understood", {}, lang, parsed.intent, {})
         else:
             rule = self.domain.rule(parsed.intent) or self.domain.rule("out_of_scope")
             assert rule is not None, "the domain needs an out_of_scope rule"

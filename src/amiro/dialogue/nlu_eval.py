@@ -7,12 +7,14 @@ import json
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.nlu import Parse
 from amiro.dialogue.phrases import check_language
+from amiro.dialogue.schema import OUT_OF_SCOPE
 from amiro.dialogue.text import normalize
 
 NAME_KEYS = ("person_entity", "location_entity")  # compared case- and diacritic-insensitively
@@ -50,6 +52,12 @@ def read_jsonl(path: Path) -> list[Labelled]:
     return rows
 
 
+def shipped_eval_files() -> list[Path]:
+    """amiro's own held-out files, one per language (written apart from the training data)."""
+    folder = resources.files("amiro").joinpath("data/dialogue/eval")
+    return [Path(str(folder.joinpath(f"{lang}.jsonl"))) for lang in ("en", "ro", "fr")]
+
+
 def same_value(key: str, expected: str, got: str | None) -> bool:
     if got is None:
         return False
@@ -58,22 +66,41 @@ def same_value(key: str, expected: str, got: str | None) -> bool:
     return expected == got
 
 
-def evaluate(rows: list[Labelled], parse: Callable[[str, str], Parse]) -> dict[str, Any]:
-    """Per language: ``{n, intent_accuracy, entity_accuracy, confusion, ms_per_utterance}``."""
+def _share(right: int, n: int) -> float | None:
+    return right / n if n else None
+
+
+def evaluate(
+    rows: list[Labelled],
+    parse: Callable[[str, str], Parse],
+    progress: Callable[[str, int, int], None] | None = None,
+) -> dict[str, Any]:
+    """Per language: ``{n, intent_accuracy, entity_accuracy, in_scope_accuracy,
+    out_of_scope_rejection, confusion, ms_per_utterance}`` (a share is None without rows of
+    its kind).  ``progress(lang, done, total)`` is called every 500 utterances."""
     out: dict[str, Any] = {}
     for lang in sorted({r.lang for r in rows}):
         subset = [r for r in rows if r.lang == lang]
         parse(lang, subset[0].text)  # trains the model outside the timing
         confusion: dict[str, dict[str, int]] = {}
         right = pairs = pairs_right = 0
+        scope = {True: [0, 0], False: [0, 0]}  # in scope? -> [right, n]
         errors: list[dict[str, Any]] = []
-        start = time.perf_counter()
-        results = [parse(lang, r.text) for r in subset]
-        elapsed = time.perf_counter() - start
+        results: list[Parse] = []
+        elapsed = 0.0
+        for done, r in enumerate(subset, 1):
+            start = time.perf_counter()
+            results.append(parse(lang, r.text))
+            elapsed += time.perf_counter() - start
+            if progress is not None and (done % 500 == 0 or done == len(subset)):
+                progress(lang, done, len(subset))
         for r, p in zip(subset, results, strict=True):
             row = confusion.setdefault(r.intent, {})
             row[p.intent] = row.get(p.intent, 0) + 1
             right += p.intent == r.intent
+            counts = scope[r.intent != OUT_OF_SCOPE]
+            counts[0] += p.intent == r.intent
+            counts[1] += 1
             ok = [same_value(k, v, p.entities.get(k)) for k, v in r.entities.items()]
             pairs += len(ok)
             pairs_right += sum(ok)
@@ -83,6 +110,8 @@ def evaluate(rows: list[Labelled], parse: Callable[[str, str], Parse]) -> dict[s
             "n": len(subset),
             "intent_accuracy": right / len(subset),
             "entity_accuracy": pairs_right / pairs if pairs else 1.0,
+            "in_scope_accuracy": _share(*scope[True]),
+            "out_of_scope_rejection": _share(*scope[False]),
             "confusion": confusion,
             "ms_per_utterance": 1000.0 * elapsed / len(subset),
             "errors": errors,

@@ -10,6 +10,7 @@ from typing import Any
 import yaml
 
 from amiro.core.config import ConfigError
+from amiro.dialogue.text import normalize
 from amiro.home.household import LANGUAGES
 
 
@@ -24,6 +25,13 @@ def check_language(lang: str) -> str:
     if lang not in LANGUAGES:
         raise ConfigError(f"unknown language '{lang}' (choices: {', '.join(LANGUAGES)})")
     return lang
+
+
+def local_name(kind: str, value: str, lang: str) -> str:
+    """A room, device state or place in ``lang`` (``room``, ``kitchen`` → "bucătărie");
+    a value without an entry (a person, an unknown town) is said as given."""
+    key = f"{kind}_{'_'.join(normalize(value).split())}"
+    return phrase(key, lang) if key in _table() else value
 
 
 def phrase(key: str, lang: str, fields: Mapping[str, Any] | None = None) -> str:

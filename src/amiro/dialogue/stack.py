@@ -57,6 +57,7 @@ def build_understanding(
     heard text, the NLU behind simulated audio and the ASR (``asr.sim_audio``), or the
     oracle when configured."""
     nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
+    nlu.warm_up()
     understanding: Understanding = create("nlu", cfg.nlu, nlu, cfg, profiles)
     return nlu, understanding
 

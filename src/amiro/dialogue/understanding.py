@@ -3,22 +3,49 @@ speaker's profile or the language the utterance was heard in.  Implements the Li
 
 from __future__ import annotations
 
+import logging
+import threading
 from functools import cache
 from pathlib import Path
 
+from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.entities import Entity
+from amiro.dialogue.massive import ENV_DIR, massive_partition, read_massive
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse
 from amiro.dialogue.phrases import check_language
 from amiro.dialogue.profiles import SpeakerProfile, language_of
 from amiro.dialogue.training_data import load_training_data, shipped_training_data
 from amiro.home.household import LANGUAGES
 
+log = logging.getLogger(__name__)
+
 
 @cache
+def real_examples(lang: str) -> tuple[tuple[str, str], ...]:
+    """MASSIVE's train partition in amiro's labels when it is found (``massive_dir``): real
+    phrasing of weather, calendar, lights and greetings, and real out-of-scope requests."""
+    path = massive_partition(lang, "train")
+    if path is None:
+        log.warning("MASSIVE not found (set %s): NLU trained on amiro's data only", ENV_DIR)
+        return ()
+    return tuple((r.text, r.intent) for r in read_massive(path))
+
+
+# One lock per language: a model is trained once even when a warm-up thread and a parse ask
+# for it together, and a trained language never waits for another one's training.
+_TRAINING: dict[str, threading.Lock] = {lang: threading.Lock() for lang in LANGUAGES}
+
+
 def shipped_model(lang: str, threshold: float = DEFAULT_THRESHOLD) -> LanguageNlu:
     """Trained once per process: the shipped data never changes at run time."""
-    return LanguageNlu(shipped_training_data(lang), threshold)
+    with _TRAINING[check_language(lang)]:
+        return _shipped_model(lang, threshold)
+
+
+@cache
+def _shipped_model(lang: str, threshold: float) -> LanguageNlu:
+    return LanguageNlu(shipped_training_data(lang), threshold, real_examples(lang))
 
 
 class Nlu:
@@ -38,9 +65,27 @@ class Nlu:
         path = self.training_data.get(lang)
         if path is None:
             return shipped_model(lang, self.threshold)
-        if lang not in self._custom:
-            self._custom[lang] = LanguageNlu(load_training_data(path), self.threshold)
-        return self._custom[lang]
+        with _TRAINING[lang]:
+            if lang not in self._custom:
+                data = load_training_data(path)
+                self._custom[lang] = LanguageNlu(data, self.threshold, real_examples(lang))
+            return self._custom[lang]
+
+    def warm_up(self) -> threading.Thread:
+        """Train every language in the background (the household's first): training takes
+        seconds with real data, and the first reply must not wait for it."""
+        spoken = [p.lang for p in self.profiles.values() if p.lang in LANGUAGES]
+        order = list(dict.fromkeys([*spoken, "en", *LANGUAGES]))
+        thread = threading.Thread(target=self._train, args=(order,), name="nlu", daemon=True)
+        thread.start()
+        return thread
+
+    def _train(self, order: list[str]) -> None:
+        for lang in order:
+            try:
+                self.model(lang)
+            except ConfigError:  # bad training data: reported where the model is first used
+                return
 
     def parse(self, text: str, lang: str) -> Parse:
         return self.model(lang).parse(text)
