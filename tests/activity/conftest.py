@@ -3,13 +3,13 @@ the real skeleton sets (research data kept beside the clone, never in it)."""
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest
 
 from amiro.activity.onnx_model import ActivityModel
 from amiro.activity.train import TrainConfig, train
+from shared_data import shared_data
 
 
 @pytest.fixture(scope="session")
@@ -21,16 +21,8 @@ def tiny_model(tmp_path_factory: pytest.TempPathFactory) -> ActivityModel:
 
 @pytest.fixture(scope="session")
 def real_har() -> Path:
-    """``shared/data/har`` beside the repository (CI: ``../shared``; a worktree may sit one
-    folder deeper).  Missing in CI is a failure, not a skip."""
-    root = Path(__file__).resolve().parents[2]
-    for parent in root.parents:
-        found = parent / "shared" / "data" / "har"
-        if found.is_dir():
-            return found
-    if os.environ.get("CI"):
-        pytest.fail(f"no shared/data/har beside {root}: CI must provide ../shared")
-    pytest.skip(f"no shared/data/har beside {root} (real skeleton sets)")
+    """The real skeleton sets, ``shared/data/har`` beside the repository."""
+    return shared_data("har")
 
 
 @pytest.fixture(scope="session")

@@ -23,13 +23,19 @@ from amiro.dialogue.phrases import phrase
 from amiro.dialogue.sources import offline_sources
 from amiro.dialogue.understanding import Nlu, shipped_model
 from amiro.evaluation.dialogue_margin import sweep
+from shared_data import shared_data
 
 HOME_COMMANDS = Path(__file__).parent / "data" / "home_commands.jsonl"
 LANGS = ("en", "fr", "ro")
-needs_massive = pytest.mark.skipif(
-    massive_partition("en", "train") is None,
-    reason="MASSIVE not found (../shared/data/nlu/massive or AMIRO_MASSIVE_DIR)",
-)
+needs_massive = pytest.mark.usefixtures("massive")
+
+
+@pytest.fixture
+def massive() -> Path:
+    """MASSIVE beside the repository, as the NLU itself finds it when it trains."""
+    return shared_data("nlu", "massive")
+
+
 KEYS = (
     "n",
     "intent_accuracy",

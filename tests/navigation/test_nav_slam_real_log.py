@@ -4,7 +4,6 @@ apart), read from ../shared/data beside the repository (research terms: never co
 from __future__ import annotations
 
 import itertools
-import os
 from pathlib import Path
 
 import numpy as np
@@ -14,20 +13,12 @@ from amiro.evaluation.slam_evaluate import evaluate_log
 from amiro.navigation.carmen import read_carmen
 from amiro.navigation.metrics import ate_rmse
 from amiro.navigation.poses import between
-
-# ../shared beside the clone (AMIRO_SHARED points elsewhere, e.g. from a git worktree)
-SHARED = Path(os.environ.get("AMIRO_SHARED", Path(__file__).resolve().parents[2].parent / "shared"))
-LOG = SHARED / "data/slam/carmen/freiburg-101-corrected.log.gz"
+from shared_data import shared_data
 
 
 @pytest.fixture
 def log() -> Path:
-    if not LOG.is_file():
-        message = f"{LOG} missing: the real-log tests need ../shared beside the clone"
-        if os.environ.get("CI"):
-            pytest.fail(message)
-        pytest.skip(message)
-    return LOG
+    return shared_data("slam", "carmen", "freiburg-101-corrected.log.gz")
 
 
 def test_the_reader_recovers_the_odometry_the_robot_measured(log: Path) -> None:

@@ -3,11 +3,15 @@ speaker's profile or the language the utterance was heard in.  Implements the Li
 
 from __future__ import annotations
 
+import hashlib
 import logging
+import os
+import pickle
 import threading
 from functools import cache
 from pathlib import Path
 
+from amiro import __version__
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.entities import Entity
@@ -45,7 +49,41 @@ def shipped_model(lang: str, threshold: float = DEFAULT_THRESHOLD) -> LanguageNl
 
 @cache
 def _shipped_model(lang: str, threshold: float) -> LanguageNlu:
-    return LanguageNlu(shipped_training_data(lang), threshold, real_examples(lang))
+    """Trained from the shipped data and MASSIVE, or loaded from the user's cache when the
+    same data trained it before (training with real data takes seconds a language)."""
+    data, real = shipped_training_data(lang), real_examples(lang)
+    key = hashlib.sha256(
+        repr((__version__, sklearn_version(), threshold, data, real)).encode()
+    ).hexdigest()[:16]
+    path = cache_dir() / f"nlu-{lang}-{key}.pickle"
+    try:
+        model: LanguageNlu = pickle.loads(path.read_bytes())  # our own file, keyed by its data
+        return model
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
+        pass
+    model = LanguageNlu(data, threshold, real)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        partial = path.with_suffix(f".{os.getpid()}.tmp")
+        partial.write_bytes(pickle.dumps(model))
+        partial.replace(path)  # atomic: a concurrent reader sees the whole file or none
+    except OSError as exc:
+        log.info("NLU model not cached (%s): it trains again next time", exc)
+    return model
+
+
+def sklearn_version() -> str:
+    from sklearn import __version__ as version
+
+    return str(version)
+
+
+def cache_dir() -> Path:
+    """``$AMIRO_CACHE``, else ``$XDG_CACHE_HOME/amiro``, else ``~/.cache/amiro``."""
+    if "AMIRO_CACHE" in os.environ:
+        return Path(os.environ["AMIRO_CACHE"])
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "amiro"
 
 
 class Nlu:
