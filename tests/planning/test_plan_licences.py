@@ -52,7 +52,7 @@ def test_missing_gpl_engine_names_the_extra(
     monkeypatch: pytest.MonkeyPatch, engine: str, package: str
 ) -> None:
     monkeypatch.setitem(sys.modules, package, None)  # as if not installed
-    with pytest.raises(ConfigError, match=r"pip install 'amiro\[gpl-planners\]'") as err:
+    with pytest.raises(ConfigError, match=r"pip install 'amiro\[planners-gpl\]'") as err:
         HomePlanner(PlanningConfig(engine=engine))
     assert "\n" not in str(err.value)
 

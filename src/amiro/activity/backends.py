@@ -14,4 +14,4 @@ from amiro.core.registry import register
 
 register("activity", "onnx", "amiro.activity.stack:onnx_recognizer")
 register("activity", "oracle", "amiro.sim.activity_oracle:oracle_recognizer")
-register("activity", "camera-onnx", "amiro.activity.stack:camera_onnx_recognizer")
+register("activity", "camera-onnx", "amiro.activity.stack:camera_onnx_recognizer", extra="vision")

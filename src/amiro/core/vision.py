@@ -19,7 +19,9 @@ def import_cv2() -> Any:
     try:
         return importlib.import_module("cv2")
     except ImportError as exc:
-        raise ConfigError(f"this detector needs opencv-python-headless<5: {exc}") from None
+        raise ConfigError(
+            f"this needs the extra amiro[vision] (opencv-python-headless<5): {exc}"
+        ) from None
 
 
 def open_session(model: Path, who: str) -> Any:

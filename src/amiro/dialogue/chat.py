@@ -34,7 +34,9 @@ def _spoken(lang: str) -> Iterator[str]:
     try:
         import sounddevice  # type: ignore[import-untyped,import-not-found,unused-ignore]
     except (ImportError, OSError):
-        raise ConfigError("chat --voice: needs the sounddevice package and PortAudio") from None
+        raise ConfigError(
+            "chat --voice: needs the extra amiro[speech] (sounddevice) and PortAudio"
+        ) from None
     recognizer = make_recognizer(DialogueConfig(), lang=lang)  # rejects out-of-grammar speech
     detector = UtteranceDetector()
     samples_per_frame = detector.frame_bytes // 2

@@ -31,9 +31,15 @@ def real_examples(lang: str) -> tuple[tuple[str, str], ...]:
     phrasing of weather, calendar, lights and greetings, and real out-of-scope requests."""
     path = massive_partition(lang, "train")
     if path is None:
-        log.warning("MASSIVE not found (set %s): NLU trained on amiro's data only", ENV_DIR)
+        _warn_once(f"MASSIVE not found (set {ENV_DIR}): NLU trained on amiro's data only")
         return ()
     return tuple((r.text, r.intent) for r in read_massive(path))
+
+
+@cache
+def _warn_once(message: str) -> None:
+    """One warning a process, however many languages train."""
+    log.warning("%s", message)
 
 
 # One lock per language: a model is trained once even when a warm-up thread and a parse ask

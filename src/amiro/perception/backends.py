@@ -21,8 +21,8 @@ from amiro.core.registry import register
 
 register("perception", "sim", "amiro.perception.stack:sim_people_finder")
 register("perception", "oracle", "amiro.sim.perception_oracle:oracle_people_finder")
-register("perception", "camera", "amiro.system.camera:camera_people_finder")
+register("perception", "camera", "amiro.system.camera:camera_people_finder", extra="vision")
 register("faces", "sim", "amiro.system.camera:unnamed_faces")
 register("faces", "dlib", "amiro.system.camera:dlib_faces", extra="faces")
-register("detector", "hog", "amiro.system.camera:hog_detector")
-register("detector", "onnx", "amiro.system.camera:onnx_detector")
+register("detector", "hog", "amiro.system.camera:hog_detector", extra="vision")
+register("detector", "onnx", "amiro.system.camera:onnx_detector", extra="vision")

@@ -1,7 +1,7 @@
 """unified-planning's environment, made without loading the GPL engines.
 
 UP's engine factory imports, when the environment is first made, every engine it knows that is
-installed: with the extra ``gpl-planners`` that would load pyperplan and Fast Downward (GPL) in
+installed: with the extra ``planners-gpl`` that would load pyperplan and Fast Downward (GPL) in
 every run, whatever the config says.  amiro makes the environment with those packages hidden
 from import (a ``None`` entry in ``sys.modules`` makes an import fail) and adds a GPL engine to
 the factory only when the config chooses it (:func:`add_engine`).

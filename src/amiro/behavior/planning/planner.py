@@ -1,7 +1,7 @@
 """Planning through unified-planning with the engine chosen in config.
 
 ``kairos`` (Apache-2.0, through :mod:`.kairos_engine`) is the default: classical, or temporal
-with durations from distances.  The GPL engines are optional (extra ``gpl-planners``):
+with durations from distances.  The GPL engines are optional (extra ``planners-gpl``):
 ``pyperplan`` (through :mod:`.pyperplan_engine`, which keeps the grounded task between plans,
 the fastest re-plans) and ``fast-downward``.  A planner keeps its engine for its life, so
 re-planning skips the start-up.
@@ -33,7 +33,7 @@ _PACKAGES = {
     "pyperplan": "up_pyperplan",
     "fast-downward": "up_fast_downward",
 }
-_EXTRAS = {"pyperplan": "gpl-planners", "fast-downward": "gpl-planners"}
+_EXTRAS = {"pyperplan": "planners-gpl", "fast-downward": "planners-gpl"}
 # config name -> the engine's name in unified-planning, its module and class
 _UP_ENGINES = {
     "kairos": ("amiro-kairos", "amiro.behavior.planning.kairos_engine", "HomeKairos"),
