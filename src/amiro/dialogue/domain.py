@@ -34,6 +34,10 @@ class Domain(Section):
     def rule(self, intent: str) -> Rule | None:
         return next((r for r in self.rules if r.intent == intent), None)
 
+    def for_action(self, action: str) -> Rule | None:
+        """The slots an action needs, for a story that predicts it."""
+        return next((r for r in self.rules if r.action == action), None)
+
 
 def load_domain(path: Path) -> Domain:
     return parse(Domain, read_yaml(path), str(path))
