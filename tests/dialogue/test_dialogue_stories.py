@@ -9,7 +9,7 @@ import pytest
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
-from amiro.dialogue.domain import shipped_domain
+from amiro.dialogue.domain import load_domain, shipped_domain
 from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.phrases import phrase
 from amiro.dialogue.sources import offline_sources
@@ -95,3 +95,22 @@ def test_a_misspelt_story_file_is_a_one_line_error_naming_it(tmp_path: Path) -> 
         load_stories(path)
     assert str(path) in str(err.value) and "intnet" in str(err.value)
     assert "\n" not in str(err.value)
+
+
+def test_a_misspelt_rules_file_is_a_one_line_error_naming_it(tmp_path: Path) -> None:
+    domain, rules = tmp_path / "domain.yaml", tmp_path / "rules.yml"
+    domain.write_text("actions: {}\n")
+    rules.write_text(
+        "rules:\n  - rule: greet\n    steps: [{intent: greet}, {acton: utter_greet}]\n"
+    )
+    with pytest.raises(ConfigError) as err:
+        load_domain(domain, rules)
+    assert str(rules) in str(err.value) and "acton" in str(err.value)
+    assert "\n" not in str(err.value)
+
+
+def test_the_shipped_rules_answer_each_intent_with_its_slots() -> None:
+    rule = shipped_domain().rule("get_health")
+    assert rule is not None and rule.action == "answer_health"
+    assert rule.required == ("health_entity",)
+    assert rule.defaults == {"dateandtime_entity": "today"}
