@@ -1,6 +1,7 @@
-"""Dialogue management: rules pick the action for an intent, missing slots are asked for
-over several turns, and every answer comes in the user's language with the paper's default
-output (display and say unless the user asked for one of them)."""
+"""Dialogue management: the stories (memoization over the last turns) or else the rules pick
+the next action, slots are carried across turns and missing ones asked for, a follow-up no
+story explains gets the fallback, and every answer comes in the user's language with the
+paper's default output (display and say unless the user asked for one of them)."""
 
 from __future__ import annotations
 
@@ -10,9 +11,11 @@ from dataclasses import dataclass, field
 from amiro.dialogue.actions import Actions
 from amiro.dialogue.domain import Domain, Rule
 from amiro.dialogue.phrases import phrase
+from amiro.dialogue.stories import INFORM, MAX_HISTORY, Memoization, Stories, shipped_stories
 from amiro.dialogue.understanding import Nlu
 
 CANCEL_INTENTS = ("deny", "goodbye")
+FALLBACK = "utter_fallback"
 
 
 @dataclass(frozen=True)
@@ -47,7 +50,14 @@ class DialogueManager:
     domain: Domain
     actions: Actions
     history: deque[Turn] = field(default_factory=lambda: deque(maxlen=200))
+    stories: Stories = field(default_factory=shipped_stories)
     _pending: dict[str, _Pending] = field(default_factory=dict)
+    _events: dict[str, list[str]] = field(default_factory=dict)  # per user, for the stories
+    _slots: dict[str, dict[str, str]] = field(default_factory=dict)  # the last action's
+    _memo: Memoization = field(init=False)
+
+    def __post_init__(self) -> None:
+        self._memo = Memoization(self.stories)
 
     def awaiting(self, user: str) -> bool:
         return user in self._pending
@@ -64,12 +74,39 @@ class DialogueManager:
         elif not text.strip():  # nothing heard (speech rejected): not a request it cannot serve
             answer = self._say("utter_not_understood", {}, lang, parsed.intent, {})
         else:
-            rule = self.domain.rule(parsed.intent) or self.domain.rule("out_of_scope")
-            assert rule is not None, "the domain needs an out_of_scope rule"
-            slots = {**rule.defaults, **parsed.entities}
-            answer = self._advance(_Pending(rule, slots, ""), lang, user, parsed.intent, slots)
+            answer = self._next_action(text, lang, user, parsed.intent, parsed.entities)
+        self._remember(user, answer)
         self.history.append(Turn(user, text, answer))
         return answer
+
+    def _next_action(
+        self, text: str, lang: str, user: str, intent: str, entities: dict[str, str]
+    ) -> Answer:
+        """A story continued by this turn, else the rule for its intent, else the fallback."""
+        followup = self.stories.is_followup(text, lang)
+        turn = INFORM if followup else intent
+        found = self._memo.predict([*self._events.get(user, []), f"intent:{turn}"])
+        rule = self.domain.for_action(found[0]) if found is not None else None
+        if found is not None and rule is not None:
+            heard = {e.key: e.value for e in self.nlu.entities(text, lang, found[1])}
+            slots = {**rule.defaults, **self._slots.get(user, {}), **heard}
+            return self._advance(_Pending(rule, slots, ""), lang, user, turn, slots)
+        rule = None if followup else self.domain.rule(intent)
+        if rule is None:
+            return self._say(FALLBACK, {}, lang, turn, entities)
+        slots = {**rule.defaults, **entities}
+        return self._advance(_Pending(rule, slots, ""), lang, user, intent, slots)
+
+    def _remember(self, user: str, answer: Answer) -> None:
+        """The turn's events for the stories and, once an action ran, its slots to carry."""
+        events = self._events.setdefault(user, [])
+        events.append(f"intent:{INFORM if answer.intent == INFORM else answer.intent}")
+        if answer.action:
+            events.append(f"action:{answer.action}")
+        del events[:-MAX_HISTORY]
+        if answer.action and not answer.ask:
+            carried = {k: v for k, v in answer.entities.items() if k != "output_entity"}
+            self._slots[user] = carried
 
     def _advance(
         self, pending: _Pending, lang: str, user: str, intent: str, entities: dict[str, str]
