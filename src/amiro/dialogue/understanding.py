@@ -116,10 +116,12 @@ class Nlu:
             return self._custom[lang]
 
     def warm_up(self) -> threading.Thread:
-        """Train every language in the background (the household's first): training takes
-        seconds with real data, and the first reply must not wait for it."""
+        """Train the household's languages in the background (English when no one is
+        known): training takes seconds with real data, and the first reply must not wait for
+        it.  Other languages train when first heard, so a process that serves one language
+        (a deployment's edge) does not spend its first seconds on the others."""
         spoken = [p.lang for p in self.profiles.values() if p.lang in LANGUAGES]
-        order = list(dict.fromkeys([*spoken, "en", *LANGUAGES]))
+        order = list(dict.fromkeys(spoken or ["en"]))
         thread = threading.Thread(target=self._train, args=(order,), name="nlu", daemon=True)
         thread.start()
         return thread
