@@ -1,12 +1,11 @@
-"""Dialogue management: the YAML stories, slot filling, outputs and the go_to callback."""
+"""Dialogue management on the shipped domain, rules and stories: slot filling, outputs and
+the go_to callback."""
 
 from __future__ import annotations
 
-from importlib import resources
 from typing import Any
 
 import pytest
-import yaml
 
 from amiro.dialogue.actions import Actions
 from amiro.dialogue.domain import shipped_domain
@@ -14,9 +13,59 @@ from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.sources import RecordingDevices, offline_sources
 from amiro.dialogue.understanding import Nlu
 
-STORIES = yaml.safe_load(
-    resources.files("amiro").joinpath("data/dialogue/stories.yaml").read_text("utf-8")
-)["stories"]
+# Conversations the dialogue manager must hold: each step is what the user says and the
+# action (or question) the robot answers with.
+STORIES: list[dict[str, Any]] = [
+    {
+        "story": "blood pressure on the screen only",
+        "lang": "en",
+        "steps": [
+            {"user": "display my blood pressure", "action": "answer_health"}
+            | {"display": True, "say": False}
+        ],
+    },
+    {
+        "story": "the paper's default output is display and say",
+        "lang": "en",
+        "steps": [
+            {"user": "what is my blood pressure", "action": "answer_health"}
+            | {"display": True, "say": True}
+        ],
+    },
+    {
+        "story": "lights, asking for the room",
+        "lang": "en",
+        "steps": [
+            {"user": "turn on the lights", "ask": "room_entity"},
+            {"user": "in the kitchen", "action": "control_device"},
+        ],
+    },
+    {
+        "story": "health, asking which measurement",
+        "lang": "ro",
+        "steps": [
+            {"user": "arată-mi datele", "ask": "health_entity"},
+            {"user": "pulsul", "action": "answer_health"},
+        ],
+    },
+    {
+        "story": "cancelling a question",
+        "lang": "fr",
+        "steps": [
+            {"user": "ferme les volets", "ask": "room_entity"},
+            {"user": "non laisse tomber", "action": "utter_cancelled"},
+        ],
+    },
+    {
+        "story": "weather and goodbye",
+        "lang": "fr",
+        "steps": [
+            {"user": "quel temps fera-t-il demain", "action": "answer_weather"},
+            {"user": "au revoir", "action": "utter_goodbye"},
+        ],
+    },
+    {"story": "go to maria", "lang": "en", "steps": [{"user": "go to maria", "action": "go_to"}]},
+]
 
 
 def manager(submitted: list[tuple[str, dict[str, Any]]] | None = None) -> DialogueManager:

@@ -9,11 +9,11 @@ import pytest
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
-from amiro.dialogue.domain import load_domain, shipped_domain
+from amiro.dialogue.domain import load_dm, load_domain, shipped_domain
 from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.phrases import phrase
-from amiro.dialogue.sources import offline_sources
-from amiro.dialogue.stories import load_stories
+from amiro.dialogue.sources import RecordingDevices, offline_sources
+from amiro.dialogue.stories import load_stories, shipped_dm_dir
 from amiro.dialogue.understanding import Nlu
 
 H, D, L, INFO = "health_entity", "dateandtime_entity", "location_entity", "info_entity"
@@ -55,6 +55,24 @@ CONVERSATIONS = {
 }  # fmt: skip
 
 FOLLOWUP = {"en": "and yesterday?", "fr": "et hier ?", "ro": "și ieri?"}
+# A device, then the same in another room, then another state: (said, room, device, state).
+DEVICES = {
+    "en": [
+        ("turn on the kitchen lights", "kitchen", "lights", "on"),
+        ("and in the bedroom?", "bedroom", "lights", "on"),
+        ("and now off", "bedroom", "lights", "off"),
+    ],
+    "fr": [
+        ("allume la lumière de la cuisine", "kitchen", "lights", "on"),
+        ("et dans la chambre ?", "bedroom", "lights", "on"),
+        ("et maintenant éteins", "bedroom", "lights", "off"),
+    ],
+    "ro": [
+        ("aprinde lumina în bucătărie", "kitchen", "lights", "on"),
+        ("și în dormitor?", "bedroom", "lights", "on"),
+        ("și acum stinge", "bedroom", "lights", "off"),
+    ],
+}
 
 
 def manager() -> DialogueManager:
@@ -70,6 +88,46 @@ def test_follow_ups_continue_the_story_with_carried_slots(lang: str) -> None:
         assert slots.items() <= answer.entities.items(), (text, answer.entities)
     texts = [t.answer.text for t in dm.history]
     assert texts[0] != texts[1]  # yesterday's reading, not today's said again
+
+
+@pytest.mark.parametrize("lang", sorted(DEVICES))
+def test_a_device_follow_up_carries_the_device_to_another_room(lang: str) -> None:
+    sources = offline_sources()
+    dm = DialogueManager(Nlu(), shipped_domain(), Actions(sources))
+    assert isinstance(sources.devices, RecordingDevices)
+    for text, room, device, state in DEVICES[lang]:
+        answer = dm.handle(text, lang, "maria")
+        assert answer.action == "control_device", (text, answer)
+        assert sources.devices.states[(room, device)] == state, text
+    assert sources.devices.states[("kitchen", "lights")] == "on"
+
+
+def test_a_users_own_stories_and_rules_drive_the_dialogue(tmp_path: Path) -> None:
+    """A folder with some of the files: its own replace amiro's, the others are amiro's."""
+    (tmp_path / "stories.en.yml").write_text('followup: {en: ["then", "and"]}\n')
+    rules = (shipped_dm_dir() / "rules.yml").read_text(encoding="utf-8")
+    (tmp_path / "rules.yml").write_text(
+        rules.replace(
+            "{intent: greet}, {action: utter_greet}", "{intent: greet}, {action: answer_info}"
+        )
+    )
+    domain, stories = load_dm(tmp_path)
+    dm = DialogueManager(Nlu(), domain, Actions(offline_sources()), stories=stories)
+    assert dm.handle("hello", "en", "maria").action == "answer_info"
+    dm.handle("what will the weather be like tomorrow", "en", "maria")
+    answer = dm.handle("then in Paris?", "en", "maria")
+    assert answer.action == "answer_weather"
+    assert answer.entities[L] == "paris"
+    assert stories.followup["fr"] == load_dm(None)[1].followup["fr"]  # amiro's French file
+
+
+def test_a_language_file_holds_only_its_own_follow_up_words(tmp_path: Path) -> None:
+    path = tmp_path / "stories.fr.yml"
+    path.write_text('followup: {en: ["and"]}\n')
+    with pytest.raises(ConfigError, match="only 'fr' words"):
+        load_dm(tmp_path)
+    with pytest.raises(ConfigError, match="no such directory"):
+        load_dm(tmp_path / "missing")
 
 
 @pytest.mark.parametrize("lang", sorted(FOLLOWUP))

@@ -81,6 +81,13 @@ def register(sub: Subcommands) -> None:
     chat.add_argument("--lang", default="en", help="en, ro or fr (default en)")
     chat.add_argument("--voice", action="store_true", help="speak through the microphone")
     chat.add_argument("--debug", action="store_true", help="also show the intent and entities")
+    chat.add_argument(
+        "--dm",
+        type=Path,
+        metavar="DIR",
+        help="your own domain.yml, rules.yml, stories.yml, stories.<lang>.yml (amiro's for "
+        "the files DIR lacks)",
+    )
 
 
 def _parse(args: argparse.Namespace) -> int:
@@ -232,4 +239,4 @@ def _chat(args: argparse.Namespace) -> int:
     from amiro.dialogue.chat import run_chat
     from amiro.dialogue.phrases import check_language
 
-    return run_chat(check_language(args.lang), args.voice, args.debug)
+    return run_chat(check_language(args.lang), args.voice, args.debug, args.dm)

@@ -158,7 +158,7 @@ def edge_behaviors(
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
         if names.UNDERSTAND in node.call_services
-        else build_understanding(cfg.dialogue, residents)[1]
+        else build_understanding(cfg.dialogue, residents, runtime.clock)[1]
     )
     modules = senses.modules(runtime, world, navigation)
     modules.speech = BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second)

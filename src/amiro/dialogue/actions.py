@@ -6,9 +6,11 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from amiro.core.clock import Clock, SimClock
 from amiro.dialogue.devices import coherent_device
 from amiro.dialogue.phrases import local_name, phrase
 from amiro.dialogue.sources import Sources
+from amiro.dialogue.when import duration_seconds
 
 Submit = Callable[[str, dict[str, Any]], object]
 Answer = tuple[str, dict[str, Any]]
@@ -21,9 +23,15 @@ def day_phrase(day: str, lang: str) -> str:
 
 
 class Actions:
-    def __init__(self, sources: Sources, submit: Submit | None = None) -> None:
+    """``clock``: the runtime's, on which "in two hours" becomes a time of day (a simulated
+    clock at its epoch when none is given)."""
+
+    def __init__(
+        self, sources: Sources, submit: Submit | None = None, clock: Clock | None = None
+    ) -> None:
         self.sources = sources
         self.submit = submit
+        self.clock: Clock = clock or SimClock()
 
     def run(self, name: str, slots: dict[str, str], user: str, lang: str) -> Answer:
         if name.startswith("utter_"):
@@ -71,6 +79,17 @@ class Actions:
             return "answer_device_unknown", {}
         done = local_name("device", f"{device}_{state}", lang)
         return "answer_device_done", {"device_state": done, "room": local_name("room", room, lang)}
+
+    def answer_postpone(self, slots: dict[str, str], user: str, lang: str) -> Answer:
+        """ "Later": when it comes with a duration, the clock time it ends (UTC, the clock's),
+        with its date when that is not today."""
+        seconds = duration_seconds(slots.get("duration", ""))
+        if seconds is None:
+            return "utter_ok", {}
+        now = self.clock.now()
+        today, due = self.clock.iso(now), self.clock.iso(now + seconds)
+        time = due[11:16] if due[:10] == today[:10] else f"{due[:10]} {due[11:16]}"
+        return "answer_postpone", {"time": time}
 
     def go_to(self, slots: dict[str, str], user: str, lang: str) -> Answer:
         if self.submit is None:

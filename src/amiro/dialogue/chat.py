@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Iterator
+from pathlib import Path
 
 from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
-from amiro.dialogue.domain import shipped_domain
+from amiro.dialogue.domain import load_dm
 from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.sources import offline_sources
 from amiro.dialogue.understanding import Nlu
@@ -55,15 +56,16 @@ def _spoken(lang: str) -> Iterator[str]:
 BANNER = "amiro chat ({lang}): talk to the robot; say goodbye, or Ctrl-D / Ctrl-C to quit."
 
 
-def run_chat(lang: str, voice: bool, debug: bool = False) -> int:
-    """Only the robot's reply is shown; ``debug`` adds the intent and entities understood."""
+def run_chat(lang: str, voice: bool, debug: bool = False, dm: Path | None = None) -> int:
+    """Only the robot's reply is shown; ``debug`` adds the intent and entities understood;
+    ``dm``: a folder of the user's own stories, rules and domain (``dialogue.dm``)."""
+    domain, stories = load_dm(dm)
     nlu = Nlu()
     nlu.model(lang)  # train before the first prompt
     print(BANNER.format(lang=lang), file=sys.stderr)
     got: list[tuple[str, dict[str, object]]] = []
-    manager = DialogueManager(
-        nlu, shipped_domain(), Actions(offline_sources(), lambda k, p: got.append((k, p)))
-    )
+    actions = Actions(offline_sources(), lambda k, p: got.append((k, p)))
+    manager = DialogueManager(nlu, domain, actions, stories=stories)
     try:
         for text in _spoken(lang) if voice else _typed():
             if not text.strip() and not voice:  # spoken but rejected: "did not understand"

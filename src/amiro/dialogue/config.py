@@ -55,6 +55,11 @@ class DialogueConfig(Section):
     training_data: dict[Literal["en", "ro", "fr"], Path] = Field(
         default_factory=dict, description="language -> Rasa-style YAML replacing the shipped data"
     )
+    dm: Path | None = Field(
+        default=None,
+        description="a folder laid out like data/dialogue/dm (domain.yml, rules.yml, "
+        "stories.yml, stories.<lang>.yml) replacing amiro's files it holds",
+    )
     words_per_second: float = Field(default=2.5, gt=0.0)
     tts: TtsConfig = Field(default_factory=TtsConfig)
     asr: AsrConfig = Field(default_factory=AsrConfig)

@@ -1,17 +1,18 @@
 """The dialogue domain: the rules from intent to action (data/dialogue/dm/rules.yml, Rasa's
 rules.yml format) joined with the slots each action needs and how to ask for a missing one
-(data/dialogue/domain.yaml)."""
+(data/dialogue/dm/domain.yml); :func:`load_dm` reads them and the stories from a user's
+folder laid out like data/dialogue/dm (``dialogue.dm`` in the configuration)."""
 
 from __future__ import annotations
 
 from functools import cache
-from importlib import resources
 from pathlib import Path
 
 from pydantic import Field, model_validator
 
-from amiro.core.config import Section, parse, read_yaml
-from amiro.dialogue.stories import Step
+from amiro.core.config import ConfigError, Section, parse, read_yaml
+from amiro.dialogue.stories import Step, Stories, dm_file, load_story_files, shipped_stories
+from amiro.home.household import LANGUAGES
 
 
 class Slots(Section):
@@ -75,10 +76,18 @@ def load_domain(path: Path, rules_path: Path) -> Domain:
     return Domain(rules=tuple(rules), ask=domain.ask)
 
 
-def _shipped(name: str) -> Path:
-    return Path(str(resources.files("amiro").joinpath(f"data/dialogue/{name}")))
-
-
 @cache
 def shipped_domain() -> Domain:
-    return load_domain(_shipped("domain.yaml"), _shipped("dm/rules.yml"))
+    return load_domain(dm_file("domain.yml"), dm_file("rules.yml"))
+
+
+def load_dm(folder: Path | None) -> tuple[Domain, Stories]:
+    """The domain, rules and stories of ``folder`` (``domain.yml``, ``rules.yml``,
+    ``stories.yml``, ``stories.<lang>.yml``; amiro's own for the files it lacks), or amiro's
+    when None."""
+    if folder is None:
+        return shipped_domain(), shipped_stories()
+    if not folder.is_dir():
+        raise ConfigError(f"{folder}: no such directory (dialogue.dm: stories, rules, domain)")
+    domain = load_domain(dm_file("domain.yml", folder), dm_file("rules.yml", folder))
+    return domain, load_story_files(folder, LANGUAGES)

@@ -1,6 +1,7 @@
-"""Entity extraction: fuzzy gazetteer matching over word n-grams, plus ISO dates and numeric
-durations.  Fuzzy matching (rapidfuzz) absorbs typos, missing diacritics and ASR slips such
-as "tension" for "tensiunea"; the intent then keeps only the keys it can carry."""
+"""Entity extraction: fuzzy gazetteer matching over word n-grams, plus ISO dates, relative
+days and durations in digits or words (:mod:`amiro.dialogue.when`).  Fuzzy matching
+(rapidfuzz) absorbs typos, missing diacritics and ASR slips such as "tension" for
+"tensiunea"; the intent then keeps only the keys it can carry."""
 
 from __future__ import annotations
 
@@ -10,11 +11,10 @@ from dataclasses import dataclass
 from rapidfuzz import fuzz, process
 
 from amiro.dialogue.text import normalize
+from amiro.dialogue.when import time_entities
 
 _ISO_DATE = re.compile(r"\b(\d{4}) (\d{2}) (\d{2})\b")
-_MINUTES = re.compile(r"\b(\d{1,3}) (?:minutes?|minute|min|minutes)\b")
 PHRASE_KEYS = ("info_entity",)
-_HOURS = re.compile(r"\b(\d{1,2}) (?:hours?|ore|ora|heures?)\b")
 
 
 @dataclass(frozen=True)
@@ -34,8 +34,9 @@ def min_score(surface: str) -> float:
 
 
 class EntityExtractor:
-    def __init__(self, gazetteer: dict[str, set[tuple[str, str]]]) -> None:
+    def __init__(self, gazetteer: dict[str, set[tuple[str, str]]], lang: str) -> None:
         self.gazetteer = gazetteer
+        self.lang = lang  # the language of the time expressions
         self.surfaces = list(gazetteer)
         self.max_len = max((len(s.split()) for s in self.surfaces), default=1)
 
@@ -62,7 +63,7 @@ class EntityExtractor:
                 for key, value in sorted(self.gazetteer[surface]):
                     if allowed is None or key in allowed:
                         found.append(Entity(key, value, i, i + n, score))
-        found += _patterns(" ".join(words))
+        found += [e for e in _patterns(words, self.lang) if allowed is None or e.key in allowed]
         found = _resolve(found)
         missing = [k for k in PHRASE_KEYS if (allowed is None or k in allowed)]
         missing = [k for k in missing if all(e.key != k for e in found)]
@@ -79,14 +80,12 @@ class EntityExtractor:
         return Entity(key, value, 0, 0, float(found[1]))
 
 
-def _patterns(text: str) -> list[Entity]:
+def _patterns(words: list[str], lang: str) -> list[Entity]:
+    """ISO dates, then relative days and durations: they win over the gazetteer's words."""
     out: list[Entity] = []
-    if m := _ISO_DATE.search(text):
+    if m := _ISO_DATE.search(" ".join(words)):
         out.append(Entity("dateandtime_entity", "-".join(m.groups()), 0, 0, 100.0))
-    if m := _MINUTES.search(text):
-        out.append(Entity("duration", f"PT{int(m.group(1))}M", 0, 0, 100.0))
-    elif m := _HOURS.search(text):
-        out.append(Entity("duration", f"PT{int(m.group(1))}H", 0, 0, 100.0))
+    out += [Entity(key, value, 0, 0, 100.0) for key, value in time_entities(words, lang)]
     return out
 
 

@@ -54,10 +54,13 @@ class DialogueManager:
     _pending: dict[str, _Pending] = field(default_factory=dict)
     _events: dict[str, list[str]] = field(default_factory=dict)  # per user, for the stories
     _slots: dict[str, dict[str, str]] = field(default_factory=dict)  # the last action's
-    _memo: Memoization = field(init=False)
+    _memo: dict[str, Memoization] = field(default_factory=dict)  # per language
 
-    def __post_init__(self) -> None:
-        self._memo = Memoization(self.stories)
+    def memo(self, lang: str) -> Memoization:
+        """The memoization of ``lang``'s stories (the shared ones and its own)."""
+        if lang not in self._memo:
+            self._memo[lang] = Memoization(self.stories.of(lang))
+        return self._memo[lang]
 
     def awaiting(self, user: str) -> bool:
         return user in self._pending
@@ -85,7 +88,7 @@ class DialogueManager:
         """A story continued by this turn, else the rule for its intent, else the fallback."""
         followup = self.stories.is_followup(text, lang)
         turn = INFORM if followup else intent
-        found = self._memo.predict([*self._events.get(user, []), f"intent:{turn}"])
+        found = self.memo(lang).predict([*self._events.get(user, []), f"intent:{turn}"])
         rule = self.domain.for_action(found[0]) if found is not None else None
         if found is not None and rule is not None:
             heard = {e.key: e.value for e in self.nlu.entities(text, lang, found[1])}

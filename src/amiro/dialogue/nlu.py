@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from datetime import date
 
 import numpy as np
 from sklearn.feature_extraction.text import TfidfVectorizer  # type: ignore[import-untyped,import-not-found,unused-ignore]
@@ -19,6 +20,7 @@ from amiro.dialogue.entities import EntityExtractor
 from amiro.dialogue.schema import INTENT_ENTITIES, OUT_OF_SCOPE
 from amiro.dialogue.text import normalize
 from amiro.dialogue.training_data import TrainingData
+from amiro.dialogue.when import resolve_day
 
 DEFAULT_THRESHOLD = 0.3
 SOFTMAX_SCALE = 5.0  # turns SVM margins into confidences that spread over [0, 1]
@@ -72,9 +74,10 @@ class LanguageNlu:
         self.classifier.fit(texts, intents, model__sample_weight=weights)
         self.labels: list[str] = [str(c) for c in self.classifier.classes_]
         self.offsets = np.array([oos_margin if n == OUT_OF_SCOPE else 0.0 for n in self.labels])
-        self.extractor = EntityExtractor(data.gazetteer())
+        self.extractor = EntityExtractor(data.gazetteer(), data.lang)
 
-    def parse(self, text: str) -> Parse:
+    def parse(self, text: str, today: date | None = None) -> Parse:
+        """Intent and entities; with ``today``, relative days ("in three days") are dated."""
         clean = normalize(text)
         if not clean:
             return Parse(text, self.lang, OUT_OF_SCOPE, 1.0)
@@ -93,4 +96,12 @@ class LanguageNlu:
         )
         if intent == "control_device":
             entities = coherent_device(entities)
+        if today is not None:
+            entities = dated(entities, today)
         return Parse(text, self.lang, intent, confidence, entities, ranking)
+
+
+def dated(entities: dict[str, str], today: date) -> dict[str, str]:
+    """``entities`` with a relative ``dateandtime_entity`` resolved against ``today``."""
+    day = entities.get("dateandtime_entity")
+    return entities if day is None else {**entities, "dateandtime_entity": resolve_day(day, today)}

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from amiro.core.clock import Clock
 from amiro.core.registry import create
 from amiro.core.runtime import Runtime
 from amiro.dialogue.actions import Actions, Submit
 from amiro.dialogue.asr import ConfidenceGate, Recognizer
 from amiro.dialogue.audio_loop import AudioLoopUnderstanding
 from amiro.dialogue.config import DialogueConfig
-from amiro.dialogue.domain import shipped_domain
+from amiro.dialogue.domain import load_dm
 from amiro.dialogue.manager import DialogueManager
 from amiro.dialogue.node import DialogueNode, TtsNode
 from amiro.dialogue.oracle import OracleUnderstanding
@@ -51,12 +52,13 @@ def make_recognizer(
 
 
 def build_understanding(
-    cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
+    cfg: DialogueConfig, profiles: dict[str, SpeakerProfile], clock: Clock | None = None
 ) -> tuple[Nlu, Understanding]:
-    """The household's NLU, and what Listen tasks understand replies with: the NLU on the
-    heard text, the NLU behind simulated audio and the ASR (``asr.sim_audio``), or the
-    oracle when configured."""
-    nlu = Nlu(cfg.nlu_threshold, {str(k): v for k, v in cfg.training_data.items()}, profiles)
+    """The household's NLU (relative days dated on ``clock``), and what Listen tasks
+    understand replies with: the NLU on the heard text, the NLU behind simulated audio and
+    the ASR (``asr.sim_audio``), or the oracle when configured."""
+    training = {str(k): v for k, v in cfg.training_data.items()}
+    nlu = Nlu(cfg.nlu_threshold, training, profiles, clock)
     nlu.warm_up()
     understanding: Understanding = create("nlu", cfg.nlu, nlu, cfg, profiles)
     return nlu, understanding
@@ -88,8 +90,10 @@ def build_dialogue(
     """Speech output, understanding for Listen, and the dialogue manager node (added to the
     runtime).  ``submit(kind, payload)`` hands behaviour requests (``go_to``) to the engine."""
     profiles = {**cfg.profiles, **(profiles or {})}
-    nlu, understanding = build_understanding(cfg, profiles)
-    manager = DialogueManager(nlu, shipped_domain(), Actions(sources or offline_sources(), submit))
+    nlu, understanding = build_understanding(cfg, profiles, runtime.clock)
+    domain, stories = load_dm(cfg.dm)
+    actions = Actions(sources or offline_sources(), submit, runtime.clock)
+    manager = DialogueManager(nlu, domain, actions, stories=stories)
     node = runtime.add(DialogueNode(manager, profiles))
     tts = None
     if cfg.tts.output != "none":

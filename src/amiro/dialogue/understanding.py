@@ -8,21 +8,27 @@ import logging
 import os
 import pickle
 import threading
+from dataclasses import replace
+from datetime import date
 from functools import cache
 from pathlib import Path
 
 from amiro import __version__
+from amiro.core.clock import Clock, SimClock
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.entities import Entity
 from amiro.dialogue.massive import ENV_DIR, massive_partition, read_massive
-from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse
+from amiro.dialogue.nlu import DEFAULT_THRESHOLD, LanguageNlu, Parse, dated
 from amiro.dialogue.phrases import check_language
 from amiro.dialogue.profiles import SpeakerProfile, language_of
 from amiro.dialogue.training_data import load_training_data, shipped_training_data
 from amiro.home.household import LANGUAGES
 
 log = logging.getLogger(__name__)
+# Part of the cache key: raised whenever what a pickled model holds changes shape (2: the
+# entity extractor knows its language), so that an older cached file is never loaded.
+MODEL_FORMAT = 2
 
 
 @cache
@@ -59,7 +65,7 @@ def _shipped_model(lang: str, threshold: float) -> LanguageNlu:
     same data trained it before (training with real data takes seconds a language)."""
     data, real = shipped_training_data(lang), real_examples(lang)
     key = hashlib.sha256(
-        repr((__version__, sklearn_version(), threshold, data, real)).encode()
+        repr((MODEL_FORMAT, __version__, sklearn_version(), threshold, data, real)).encode()
     ).hexdigest()[:16]
     path = cache_dir() / f"nlu-{lang}-{key}.pickle"
     try:
@@ -93,16 +99,25 @@ def cache_dir() -> Path:
 
 
 class Nlu:
+    """``clock``: the runtime's, on which relative days are dated ("in three days" is three
+    days after its today); a simulated clock at its epoch when none is given."""
+
     def __init__(
         self,
         threshold: float = DEFAULT_THRESHOLD,
         training_data: dict[str, Path] | None = None,
         profiles: dict[str, SpeakerProfile] | None = None,
+        clock: Clock | None = None,
     ) -> None:
         self.threshold = threshold
         self.training_data = dict(training_data or {})
         self.profiles = dict(profiles or {})
+        self.clock: Clock = clock or SimClock()
         self._custom: dict[str, LanguageNlu] = {}
+
+    def today(self) -> date:
+        """The clock's date (UTC, as the health store's days)."""
+        return date.fromisoformat(self.clock.iso(self.clock.now())[:10])
 
     def model(self, lang: str) -> LanguageNlu:
         check_language(lang)
@@ -134,11 +149,13 @@ class Nlu:
                 return
 
     def parse(self, text: str, lang: str) -> Parse:
-        return self.model(lang).parse(text)
+        return self.model(lang).parse(text, self.today())
 
     def entities(self, text: str, lang: str, keys: tuple[str, ...]) -> list[Entity]:
         """Entities of the given keys whatever the intent: answers to "in which room?"."""
-        return self.model(lang).extractor.extract(text, keys)
+        found = self.model(lang).extractor.extract(text, keys)
+        today = self.today()
+        return [replace(e, value=dated({e.key: e.value}, today)[e.key]) for e in found]
 
     def intent(self, heard: SpeechHeard) -> tuple[str, float]:
         lang = heard.lang if heard.lang in LANGUAGES else None
