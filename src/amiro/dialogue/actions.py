@@ -4,6 +4,7 @@ fields) using the health store, calendar, weather, devices or the behaviour engi
 from __future__ import annotations
 
 from collections.abc import Callable
+from datetime import date
 from typing import Any
 
 from amiro.core.clock import Clock, SimClock
@@ -17,9 +18,15 @@ Answer = tuple[str, dict[str, Any]]
 
 
 def day_phrase(day: str, lang: str) -> str:
+    """"Tomorrow", or a date said the language's way ("Le 20 juillet 2026")."""
     if day in ("today", "tomorrow", "yesterday"):
         return phrase(f"day_{day}", lang)
-    return phrase("day_date", lang, {"date": day})
+    try:
+        when = date.fromisoformat(day)
+    except ValueError:
+        return day
+    month = phrase(f"month_{when.month}", lang)
+    return phrase("day_date", lang, {"day": when.day, "month": month, "year": when.year})
 
 
 class Actions:
