@@ -98,6 +98,25 @@ def test_evaluate_without_a_file_reads_the_held_out_files(
         assert report[lang]["intent_accuracy"] >= 0.95
 
 
+@needs_massive
+def test_evaluate_prints_a_labelled_confusion_and_plots_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = tmp_path / "ro.jsonl"
+    rows = [
+        {"lang": "ro", "text": "stinge lumina din baie", "intent": "control_device"},
+        {"lang": "ro", "text": "cum e vremea mâine", "intent": "get_weather"},
+        {"lang": "ro", "text": "pune o melodie de la queen", "intent": "out_of_scope"},
+    ]
+    path.write_text("".join(json.dumps(r) + "\n" for r in rows), encoding="utf-8")
+    assert main(["nlu", "evaluate", str(path), "--out", str(tmp_path / "out")]) == 0
+    shown = capsys.readouterr().out
+    assert "true \\ predicted" in shown
+    header = next(line for line in shown.splitlines() if "weather" in line and "|" in line)
+    assert header.split("|")[1].split() == ["device", "weather", "oos"]
+    assert (tmp_path / "out" / "nlu_confusion.png").stat().st_size > 10_000
+
+
 def test_a_file_of_the_wrong_kind_is_one_clear_error(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

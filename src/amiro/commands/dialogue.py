@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from amiro.commands.support import add_command, add_group, emit_report
+from amiro.commands.support import add_command, add_group, emit_report, out_dir
 
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
@@ -27,6 +27,7 @@ def register(sub: Subcommands) -> None:
         help='JSONL: {"lang", "text", "intent", "entities"} or MASSIVE records (mapped onto '
         "amiro's labels); default: amiro's held-out files in en, ro and fr",
     )
+    ev.add_argument("--out", type=Path, help="folder for the confusion plot (nlu_confusion.png)")
 
     nb = add_command(
         nlu, "bench", _bench_nlu, help="training time and ms per dialogue turn (NLU + manager)"
@@ -112,6 +113,7 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
     from amiro.dialogue.massive import read_labelled
     from amiro.dialogue.nlu_eval import evaluate, shipped_eval_files
     from amiro.dialogue.understanding import Nlu
+    from amiro.evaluation.dialogue_confusion import plot, table
 
     files = args.file or shipped_eval_files()
     rows = [row for path in files for row in read_labelled(path)]
@@ -122,7 +124,15 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
             print(f"{lang}: {done}/{total}", file=sys.stderr, flush=True)
 
     report = evaluate(rows, lambda lang, text: nlu.parse(text, lang), progress)
-    text = "\n".join(f"{lang}: {_describe(r)}" for lang, r in report.items())
+    text = "\n\n".join(
+        f"{lang}: {_describe(r)}\n{table(r['confusion'])}" for lang, r in report.items()
+    )
+    if args.out is not None:
+        path = out_dir(args) / "nlu_confusion.png"
+        names = ", ".join(p.name for p in files)
+        plot(report, path, f"NLU confusion (rows: true intent, share of its utterances): {names}")
+        report["plot"] = str(path)
+        text += f"\n\nconfusion plot: {path}"
     return emit_report(args, report, text)
 
 

@@ -1,0 +1,78 @@
+"""The NLU's confusion matrix per language, for ``amiro nlu evaluate``: as a labelled text
+table (rows: the true intent, columns: the predicted one) and as a plot, a panel per
+language with each row normalised to the share of that intent's utterances."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+Confusion = dict[str, dict[str, int]]
+
+
+def short(intent: str) -> str:
+    """A column heading: ``get_weather`` → ``weather``, ``out_of_scope`` → ``oos``."""
+    if intent == "out_of_scope":
+        return "oos"
+    return intent.removeprefix("get_").removeprefix("control_")
+
+
+def labels(confusion: Confusion) -> list[str]:
+    """Every intent seen as true or predicted, out_of_scope last."""
+    found = set(confusion) | {p for row in confusion.values() for p in row}
+    return sorted(found, key=lambda n: (n == "out_of_scope", n))
+
+
+def matrix(confusion: Confusion) -> tuple[list[str], np.ndarray]:
+    names = labels(confusion)
+    counts = np.array([[confusion.get(t, {}).get(p, 0) for p in names] for t in names])
+    return names, counts
+
+
+def table(confusion: Confusion) -> str:
+    """Rows are the true intents, columns the predicted ones; zeros shown as dots."""
+    names, counts = matrix(confusion)
+    heads = [short(n) for n in names]
+    width = max(len(n) for n in names)
+    cols = [max(len(h), len(str(counts[:, j].max()))) for j, h in enumerate(heads)]
+    lines = [" " * width + " | " + " ".join(h.rjust(c) for h, c in zip(heads, cols, strict=True))]
+    for name, row in zip(names, counts, strict=True):
+        cells = [(str(v) if v else ".").rjust(c) for v, c in zip(row, cols, strict=True)]
+        lines.append(name.rjust(width) + " | " + " ".join(cells))
+    return "\n".join(["true \\ predicted", *lines])
+
+
+def plot(report: dict[str, Any], path: Path, title: str) -> None:
+    """A panel per language: row-normalised shares, the counts written in the cells."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    langs = list(report)
+    size = max(len(labels(report[lang]["confusion"])) for lang in langs)
+    fig, axes = plt.subplots(1, len(langs), figsize=(0.55 * size * len(langs) + 2, 0.55 * size + 2))
+    for ax, lang in zip(np.atleast_1d(axes), langs, strict=True):
+        names, counts = matrix(report[lang]["confusion"])
+        shares = counts / np.maximum(counts.sum(axis=1, keepdims=True), 1)
+        ax.imshow(shares, cmap="Blues", vmin=0.0, vmax=1.0)
+        for (i, j), n in np.ndenumerate(counts):
+            if n:
+                colour = "white" if shares[i, j] > 0.6 else "black"
+                ax.text(j, i, str(n), ha="center", va="center", fontsize=7, color=colour)
+        heads = [short(n) for n in names]
+        ax.set_xticks(range(len(names)), heads, rotation=60, ha="right", fontsize=8)
+        ax.set_yticks(range(len(names)), heads, fontsize=8)
+        ax.set_xlabel("predicted")
+        ax.set_ylabel("true")
+        r = report[lang]
+        scope = "" if r["in_scope_accuracy"] is None else f", in scope {r['in_scope_accuracy']:.1%}"
+        oos = r["out_of_scope_rejection"]
+        refused = "" if oos is None else f", oos refused {oos:.1%}"
+        ax.set_title(f"{lang} (n={r['n']}{scope}{refused})", fontsize=9)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
