@@ -18,7 +18,7 @@ Answer = tuple[str, dict[str, Any]]
 
 
 def day_phrase(day: str, lang: str) -> str:
-    """"Tomorrow", or a date said the language's way ("Le 20 juillet 2026")."""
+    """ "Tomorrow", or a date said the language's way ("Le 20 juillet 2026")."""
     if day in ("today", "tomorrow", "yesterday"):
         return phrase(f"day_{day}", lang)
     try:
