@@ -121,6 +121,29 @@ def test_a_users_own_stories_and_rules_drive_the_dialogue(tmp_path: Path) -> Non
     assert stories.followup["fr"] == load_dm(None)[1].followup["fr"]  # amiro's French file
 
 
+def test_a_users_domain_brings_its_own_responses_per_language(tmp_path: Path) -> None:
+    domain = (shipped_dm_dir() / "domain.yml").read_text(encoding="utf-8")
+    (tmp_path / "domain.yml").write_text(
+        domain + 'responses:\n  utter_welcome: {en: "Welcome home!", ro: "Bine ați venit!"}\n'
+    )
+    rules = (shipped_dm_dir() / "rules.yml").read_text(encoding="utf-8")
+    (tmp_path / "rules.yml").write_text(
+        rules.replace("action: utter_greet}", "action: utter_welcome}")
+    )
+    domain_, stories = load_dm(tmp_path)
+    dm = DialogueManager(Nlu(), domain_, Actions(offline_sources()), stories=stories)
+    assert dm.handle("bună ziua", "ro", "maria").text == "Bine ați venit!"
+    assert dm.handle("bonjour", "fr", "maria").text == "Welcome home!"  # no French: English
+    assert dm.handle("au revoir", "fr", "maria").text == phrase("utter_goodbye", "fr")
+
+
+def test_a_rule_naming_a_response_nobody_wrote_is_a_one_line_error(tmp_path: Path) -> None:
+    rules = (shipped_dm_dir() / "rules.yml").read_text(encoding="utf-8")
+    (tmp_path / "rules.yml").write_text(rules.replace("action: utter_greet}", "action: utter_hi}"))
+    with pytest.raises(ConfigError, match="no response named utter_hi"):
+        load_dm(tmp_path)
+
+
 def test_a_language_file_holds_only_its_own_follow_up_words(tmp_path: Path) -> None:
     path = tmp_path / "stories.fr.yml"
     path.write_text('followup: {en: ["and"]}\n')

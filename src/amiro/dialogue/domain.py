@@ -11,6 +11,7 @@ from pathlib import Path
 from pydantic import Field, model_validator
 
 from amiro.core.config import ConfigError, Section, parse, read_yaml
+from amiro.dialogue.phrases import has_phrase
 from amiro.dialogue.stories import Step, Stories, dm_file, load_story_files, shipped_stories
 from amiro.home.household import LANGUAGES
 
@@ -36,6 +37,7 @@ class Rule(Slots):
 class Domain(Section):
     rules: tuple[Rule, ...]
     ask: dict[str, str] = Field(default_factory=dict)
+    responses: dict[str, dict[str, str]] = Field(default_factory=dict)  # a user's own
 
     def rule(self, intent: str) -> Rule | None:
         return next((r for r in self.rules if r.intent == intent), None)
@@ -48,6 +50,21 @@ class Domain(Section):
 class _DomainFile(Section):
     actions: dict[str, Slots] = Field(default_factory=dict)
     ask: dict[str, str] = Field(default_factory=dict)
+    # A user's own responses, per language (Rasa's domain ``responses``); English is the one
+    # said in a language a response lacks.
+    responses: dict[str, dict[str, str]] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _english_first(self) -> _DomainFile:
+        for key, texts in self.responses.items():
+            if set(texts) - set(LANGUAGES):
+                raise ValueError(f"{key}: languages are {', '.join(LANGUAGES)}")
+        lacking = sorted(k for k, texts in self.responses.items() if "en" not in texts)
+        if lacking:
+            raise ValueError(
+                f"responses without English (said when a language lacks one): {lacking}"
+            )
+        return self
 
 
 class _RuleSteps(Section):
@@ -73,7 +90,13 @@ def load_domain(path: Path, rules_path: Path) -> Domain:
         action = r.steps[1].action
         slots = domain.actions.get(action, Slots())
         rules.append(Rule(intent=r.steps[0].intent, action=action, **slots.model_dump()))
-    return Domain(rules=tuple(rules), ask=domain.ask)
+    said = [r.action for r in rules if r.action.startswith("utter_")] + list(domain.ask.values())
+    unknown = sorted({k for k in said if not has_phrase(k, domain.responses)})
+    if unknown:
+        raise ConfigError(
+            f"{rules_path}: no response named {', '.join(unknown)} (add it to {path})"
+        )
+    return Domain(rules=tuple(rules), ask=domain.ask, responses=domain.responses)
 
 
 @cache

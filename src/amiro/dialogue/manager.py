@@ -119,7 +119,8 @@ class DialogueManager:
             pending.asking = missing[0]
             self._pending[user] = pending
             key = self.domain.ask.get(missing[0], "utter_not_understood")
-            return Answer(phrase(key, lang), lang, intent, entities, ask=missing[0])
+            text = phrase(key, lang, own=self.domain.responses)
+            return Answer(text, lang, intent, entities, ask=missing[0])
         key, fields = self.actions.run(pending.rule.action, pending.slots, user, lang)
         output = pending.slots.get("output_entity")
         answer = self._say(key, fields, lang, intent, dict(pending.slots))
@@ -133,8 +134,8 @@ class DialogueManager:
             say=output != "display",
         )
 
-    @staticmethod
     def _say(
-        key: str, fields: dict[str, object], lang: str, intent: str, ents: dict[str, str]
+        self, key: str, fields: dict[str, object], lang: str, intent: str, ents: dict[str, str]
     ) -> Answer:
-        return Answer(phrase(key, lang, fields), lang, intent, ents, action=key)
+        text = phrase(key, lang, fields, self.domain.responses)
+        return Answer(text, lang, intent, ents, action=key)

@@ -34,9 +34,19 @@ def local_name(kind: str, value: str, lang: str) -> str:
     return phrase(key, lang) if key in _table() else value
 
 
-def phrase(key: str, lang: str, fields: Mapping[str, Any] | None = None) -> str:
-    """The phrase ``key`` in ``lang`` with ``{fields}`` filled in."""
-    entry = _table().get(key)
+Responses = Mapping[str, Mapping[str, str]]  # key -> language -> template
+
+
+def has_phrase(key: str, own: Responses | None = None) -> bool:
+    return key in (own or {}) or key in _table()
+
+
+def phrase(
+    key: str, lang: str, fields: Mapping[str, Any] | None = None, own: Responses | None = None
+) -> str:
+    """The phrase ``key`` in ``lang`` with ``{fields}`` filled in; ``own``: a user's
+    responses (their domain's), tried before amiro's."""
+    entry = (own or {}).get(key) or _table().get(key)
     if entry is None:
         raise KeyError(f"no phrase named '{key}'")
     template = entry.get(check_language(lang)) or entry["en"]
