@@ -114,12 +114,14 @@ def test_evaluate_prints_a_labelled_confusion_and_plots_it(
         {"lang": "ro", "text": "pune o melodie de la queen", "intent": "out_of_scope"},
     ]
     path.write_text("".join(json.dumps(r) + "\n" for r in rows), encoding="utf-8")
-    assert main(["nlu", "evaluate", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert main(["nlu", "evaluate", str(path)]) == 0
     shown = capsys.readouterr().out
     assert "true \\ predicted" in shown
     header = next(line for line in shown.splitlines() if "weather" in line and "|" in line)
     assert header.split("|")[1].split() == ["device", "weather", "oos"]
-    assert (tmp_path / "out" / "nlu_confusion.png").stat().st_size > 10_000
+    report = _cli_json(["nlu", "evaluate", str(path), "--json", "--out", str(tmp_path)], capsys)
+    assert sorted(report) == ["ro"]  # the plot does not change the report's shape
+    assert (tmp_path / "nlu_confusion.png").stat().st_size > 10_000
 
 
 def test_a_file_of_the_wrong_kind_is_one_clear_error(

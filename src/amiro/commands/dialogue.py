@@ -131,7 +131,6 @@ def _evaluate_nlu(args: argparse.Namespace) -> int:
         path = out_dir(args) / "nlu_confusion.png"
         names = ", ".join(p.name for p in files)
         plot(report, path, f"NLU confusion (rows: true intent, share of its utterances): {names}")
-        report["plot"] = str(path)
         text += f"\n\nconfusion plot: {path}"
     return emit_report(args, report, text)
 
