@@ -89,6 +89,10 @@ def test_hri_ids_list_and_amiros_actions_are_installed() -> None:
     from amiro_interfaces.action import MoveTo, RecognizeActivity, Run, Search
     from hri_msgs.msg import IdsList
     from rclpy.serialization import deserialize_message, serialize_message
+    from rosidl_generator_py.import_type_support_impl import import_type_support
+
+    for package in ("nav2_msgs", "hri_msgs", "amiro_interfaces"):  # what rclpy loads to use them
+        assert import_type_support(package) is not None
 
     msg = IdsList(ids=["anna", "b1"])
     msg.header.frame_id = "map"

@@ -141,9 +141,9 @@ def _run_process(
             ros, node.topics_out(robot), node.topics_in(robot), node.remap, name="ros2_bridge"
         )
     )
-    endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, spec)) for spec in served]
+    endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, codec)) for codec in served]
     endpoints += [
-        runtime.add(RemoteActionServer(ros, spec, node.action_timeout_s)) for spec in called
+        runtime.add(RemoteActionServer(ros, codec, node.action_timeout_s)) for codec in called
     ]
     services: list[WireEndpoint] = [runtime.add(ServiceExporter(ros, s)) for s in exported]
     services += [runtime.add(RemoteService(ros, spec)) for spec in imported]

@@ -87,7 +87,8 @@ def build_sim_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
     sim = build_sim(runtime, cfg.sim)
-    if names.MOVE_TO in node.serve_actions:  # navigation next to the robot, driven remotely
+    if {names.MOVE_TO, names.NAVIGATE_TO_POSE} & set(node.serve_actions):
+        # navigation next to the robot, driven remotely (by amiro's edge, or any Nav2 client)
         add_navigation(runtime, cfg, sim.world)
     (rng_skeletons,) = runtime.rng.spawn(1)
     rendered = node.camera is not None

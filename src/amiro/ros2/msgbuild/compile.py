@@ -88,7 +88,12 @@ def plan_targets(gen: GeneratedSources, ros_prefix: Path, out_dir: Path) -> list
         _lib(pkg, "rosidl_typesupport_c"),
         gen.sources("typesupport_c", "*.cpp"),
         (c_tree, gen.tree("typesupport_c")),
-        [_lib(pkg, "rosidl_generator_c"), "rosidl_typesupport_c"],
+        # an action's type support refers to its dependencies' (action_msgs' CancelGoal)
+        [
+            _lib(pkg, "rosidl_generator_c"),
+            *(_lib(d, "rosidl_typesupport_c") for d in deps),
+            "rosidl_typesupport_c",
+        ],
     )
     py_includes = (Path(sysconfig.get_paths()["include"]), Path(np.get_include()))
     generator_py = target(
