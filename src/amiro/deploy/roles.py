@@ -23,6 +23,7 @@ from amiro.deploy.config import NodeConfig
 from amiro.deploy.dialogue import RemoteUnderstanding
 from amiro.deploy.health import HeartbeatNode, NotificationLedger, Watchdog
 from amiro.deploy.ledger_store import LedgerStore
+from amiro.deploy.nav2 import uses_nav2
 from amiro.deploy.people import TrackedPeoplePublisher, finder_tracker
 from amiro.deploy.sim_camera import SimCameraNode
 from amiro.deploy.tf import MapOdomNode, robot_frames
@@ -119,7 +120,7 @@ def build_edge_role(
     world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
     navigation: MoveToNode | NavigationState = (
         NavigationState(runtime.bus, pose_topic(cfg))
-        if names.MOVE_TO in node.call_actions
+        if names.MOVE_TO in node.call_actions or uses_nav2(cfg)
         else add_navigation(runtime, cfg, world)
     )
     feed = HeadSensorsFeed(
