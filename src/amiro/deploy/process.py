@@ -35,6 +35,7 @@ from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
 from amiro.ros2.context import RosContext
 from amiro.ros2.endpoint import WireEndpoint
+from amiro.ros2.hri import HriPublisher
 from amiro.ros2.services import RemoteService, ServiceExporter
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import SystemConfig, home_path
@@ -147,6 +148,8 @@ def _run_process(
     endpoints += [
         runtime.add(RemoteActionServer(ros, codec, node.action_timeout_s)) for codec in called
     ]
+    if node.role == "edge":  # the people perception tracks, on ROS4HRI as well
+        runtime.add(HriPublisher(ros))
     if node.role == "edge" and uses_nav2(cfg):  # MoveTo is a client of the robot's Nav2
         world = World.load(home_path(cfg), cfg.sim.resolution)
         endpoints.append(add_nav2_move_to(runtime, ros, cfg, world, node.action_timeout_s))
