@@ -44,6 +44,9 @@ def test_a_plain_nav2_client_drives_amiro_and_cancels_it(domain_id: int) -> None
     assert client.returncode == 0, client.stderr
     got = json.loads(client.stdout.strip().splitlines()[-1])
     assert got["server"]
+    params = got["parameters"]  # the node answers describe_parameters like any ROS 2 node
+    assert params["role"][1:] == [True, "sim"]
+    assert params["navigation.backend"][1:] == [True, "amiro"] and params["role"][0]
     reached = got["first"]
     assert reached["accepted"] and reached["succeeded"] and reached["error_code"] == 0
     assert reached["feedback"] > 5 and reached["frame"] == "map"

@@ -27,6 +27,7 @@ from amiro.core.runtime import Runtime
 from amiro.deploy.config import NodeConfig
 from amiro.deploy.interfaces import known_action, known_service
 from amiro.deploy.nav2 import add_nav2_move_to, uses_nav2
+from amiro.deploy.parameters import declare_parameters
 from amiro.deploy.robot_edge import build_robot_edge
 from amiro.deploy.roles import BUILDERS
 from amiro.home.world import World
@@ -133,6 +134,7 @@ def _run_process(
     exported = [known_service(name) for name in node.serve_services]
     imported = [known_service(name) for name in node.call_services]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
+    declare_parameters(ros, node, cfg)
     clock = _process_clock(node, ros)
     if isinstance(clock, FollowedClock):
         stop.clock = clock

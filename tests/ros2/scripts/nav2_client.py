@@ -45,6 +45,24 @@ def half_way(feedback, fraction):
     return feedback[-1].feedback.distance_remaining < fraction * first
 
 
+def describe(node, target, names):
+    """``ros2 param describe`` and ``get`` on another node: {name: [description, value]}."""
+    from rcl_interfaces.srv import DescribeParameters, GetParameters
+
+    out = {}
+    describing = node.create_client(DescribeParameters, f"{target}/describe_parameters")
+    getting = node.create_client(GetParameters, f"{target}/get_parameters")
+    if not (describing.wait_for_service(timeout_sec=WAIT_S) and getting.wait_for_service(5.0)):
+        return out
+    described = describing.call_async(DescribeParameters.Request(names=names))
+    got = getting.call_async(GetParameters.Request(names=names))
+    spin_until(node, lambda: described.done() and got.done(), WAIT_S)
+    answers = zip(names, described.result().descriptors, got.result().values, strict=True)
+    for name, d, v in answers:
+        out[name] = [d.description, d.read_only, v.string_value]
+    return out
+
+
 def main() -> None:
     x1, y1, x2, y2 = map(float, sys.argv[1:5])
     rclpy.init()
@@ -57,6 +75,7 @@ def main() -> None:
     node.create_subscription(PoseStamped, "/amiro/sim/ground_truth", on_truth, 10)
     client = ActionClient(node, NavigateToPose, "navigate_to_pose")
     report = {"server": spin_until(node, client.server_is_ready, WAIT_S)}
+    report["parameters"] = describe(node, "/amiro_sim", ["role", "navigation.backend"])
     for name, (x, y), cancel_at in (("first", (x1, y1), None), ("second", (x2, y2), 0.5)):
         feedback = []
         sent = client.send_goal_async(goal_to(x, y), feedback_callback=feedback.append)
