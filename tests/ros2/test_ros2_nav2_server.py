@@ -10,12 +10,15 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from amiro.home.world import World, default_home_path
 from amiro.ros2.env import ros_environment
 
 SCRIPT = Path(__file__).parent / "scripts" / "nav2_client.py"
 
 
+@pytest.mark.slow
 def test_a_plain_nav2_client_drives_amiro_and_cancels_it(domain_id: int) -> None:
     world = World.load(default_home_path(), 0.05)
     first, second = world.place("living_room"), world.place("hallway")
