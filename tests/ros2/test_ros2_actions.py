@@ -42,6 +42,9 @@ class StepServer(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
 
     def execute(self, handle: Handle) -> None:
         self.active, self.step = handle, 0
+        assert handle.goal.pose is not None
+        # at once, before rclpy has accepted the goal: it must still reach the client
+        handle.publish_feedback(MoveToFeedback(Pose2D(0.0, 0.0, 0.0), handle.goal.pose.x))
 
     def _tick(self) -> None:
         h = self.active
@@ -107,14 +110,15 @@ def test_a_remote_goal_gets_feedback_and_its_result(split: Split) -> None:
     assert split.spin_until(lambda: handle.done, 20.0)
     assert handle.status is GoalStatus.SUCCEEDED
     assert handle.result == MoveToResult(True, "arrived via 1,2", 3.0, Pose2D(3.0, 1.0, 0.5))
-    assert [f.remaining_m for f in feedback] == [2.0, 1.0, 0.0]
+    assert [f.remaining_m for f in feedback] == [3.0, 2.0, 1.0, 0.0]
     assert feedback[-1].pose == Pose2D(3.0, 0.0, 0.0)
     assert split.remote.pending == {} and split.exporter.active == {}
 
 
 def test_a_remote_goal_can_be_canceled(split: Split) -> None:
     handle: Handle = split.client.bus.send_goal(names.MOVE_TO, MoveToGoal(Pose2D(10_000, 0, 0)))
-    assert split.spin_until(lambda: handle.feedback is not None, 20.0)
+    moved = lambda: handle.feedback is not None and handle.feedback.remaining_m < 10_000  # noqa: E731
+    assert split.spin_until(moved, 20.0)
     handle.cancel()
     assert split.spin_until(lambda: handle.done, 20.0)
     assert handle.status is GoalStatus.CANCELED

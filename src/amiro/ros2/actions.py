@@ -50,6 +50,7 @@ class _Served:
     handle: AnyHandle
     started: float
     ros_goal: Any = None  # rclpy's ServerGoalHandle, once accepted
+    early: Any = None  # feedback given before rclpy accepted the goal: sent on acceptance
 
 
 class ActionExporter(WireEndpoint):
@@ -98,7 +99,8 @@ class ActionExporter(WireEndpoint):
 
         # executing from now on, without an execute coroutine (see the module's docstring)
         ros_goal._update_state(rclpy_implementation.GoalEvent.EXECUTE)
-        served.handle.on_feedback(lambda fb: self._feedback(served, fb))
+        if served.early is not None:
+            self._feedback(served, served.early)
         served.handle.on_done(lambda _h: self._server.notify_execute(ros_goal, self._finish))
 
     def _on_cancel_request(self, ros_goal: Any) -> Any:
@@ -144,14 +146,18 @@ class ActionExporter(WireEndpoint):
             return reject
         if handle.status is GoalStatus.REJECTED:
             return reject
-        self._decided[id(goal_msg)] = (goal_msg, _Served(handle, self.now()))
+        served = _Served(handle, self.now(), early=handle.feedback)  # given in execute
+        handle.on_feedback(lambda fb: self._feedback(served, fb))
+        self._decided[id(goal_msg)] = (goal_msg, served)
         return _rclpy_action().GoalResponse.ACCEPT
 
     def _feedback(self, served: _Served, feedback: Any) -> None:
-        if served.ros_goal is not None:
-            elapsed = self.now() - served.started
-            served.ros_goal.publish_feedback(self.codec.feedback_to_ros(feedback, elapsed))
-            self.stats.sent += 1
+        if served.ros_goal is None:
+            served.early = feedback  # the latest only, as a late ROS 2 subscriber would get
+            return
+        elapsed = self.now() - served.started
+        served.ros_goal.publish_feedback(self.codec.feedback_to_ros(feedback, elapsed))
+        self.stats.sent += 1
 
 
 @dataclass
