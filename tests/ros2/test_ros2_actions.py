@@ -178,3 +178,20 @@ def test_a_plain_rclpy_client_sees_the_standard_status_codes(split: Split) -> No
     assert split.spin_until(refused.done, 20.0)
     assert not refused.result().accepted
     client.destroy()
+
+
+def test_a_goal_request_never_starves_the_servers_ros_messages(split: Split) -> None:
+    """A process following /clock spins ROS 2 alone until the clock moves; a goal request
+    arriving then must not keep the clock's message from being taken (it stalled an edge)."""
+    heard: list[Any] = []
+    split.server_ros.subscribe("std_msgs/msg/String", "/test/tick", heard.append)
+    tick = split.client_ros.publisher("std_msgs/msg/String", "/test/tick")
+    handle: Handle = split.client.bus.send_goal(names.MOVE_TO, MoveToGoal(Pose2D(3.0, 0, 0)))
+    deadline = time.monotonic() + 20.0
+    while not heard and time.monotonic() < deadline:
+        split.client.spin_for(0.01)  # the goal request goes out; the server's bus is idle
+        tick.publish(split.client_ros.types.make("std_msgs/msg/String", data="t"))
+        split.server_ros.spin(0.05)  # as FollowedClock.advance_to waits for /clock
+    assert heard, "the server's ROS 2 messages were starved"
+    assert split.spin_until(lambda: handle.done, 20.0)
+    assert handle.status is GoalStatus.SUCCEEDED

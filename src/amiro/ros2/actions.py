@@ -9,10 +9,10 @@ registers on the caller's bus under the action's name, so ``bus.send_goal`` work
 whichever process runs the server.  As for every bridge, rclpy's callbacks only queue what
 arrived; the bus acts on it when it spins, never inside a ROS 2 callback.
 
-rclpy polls a pending execute coroutine on every executor turn, which would turn each
-``spin(timeout)`` into a busy loop while a goal runs; so the server executes nothing while
-the bus goal runs: the accepted goal is marked executing, feedback is published from the
-bus's side, and rclpy's execute step only runs, once, when the bus goal has ended.
+rclpy runs a pending coroutine first on every executor turn (and takes nothing else in
+that turn), so nothing here awaits: the server marks an accepted goal executing itself,
+feedback is published from the bus's side, and rclpy's execute step only runs, once, when
+the bus goal has ended.
 """
 
 from __future__ import annotations
@@ -47,20 +47,28 @@ def _rclpy_action() -> Any:
 class _Served:
     """A goal that arrived over ROS 2 and runs on the local bus."""
 
-    handle: AnyHandle
+    goal: Any
     started: float
-    ros_goal: Any = None  # rclpy's ServerGoalHandle, once accepted
-    early: Any = None  # feedback given before rclpy accepted the goal: sent on acceptance
+    ros_goal: Any  # rclpy's ServerGoalHandle
+    handle: AnyHandle | None = None  # once the bus has it
+    refused: str = ""  # why the bus refused it after all
 
 
 class ActionExporter(WireEndpoint):
-    """Server side: goals arriving over ROS 2 run on this process's local action server."""
+    """Server side: goals arriving over ROS 2 run on this process's local action server.
+
+    A goal request is answered inside rclpy's callback by the bus server's ``accept`` (a
+    check, nothing runs); the goal itself starts on the bus's next turn.  Nothing here
+    awaits: a pending rclpy coroutine is run first by every executor turn, so waiting
+    for the bus there would keep ROS 2's own messages (a followed ``/clock``) from ever
+    being taken, and the process would stall.
+    """
 
     def __init__(self, ros: RosContext, codec: AnyCodec) -> None:
         super().__init__(ros, codec.name, f"ros2_serve:{codec.ros_name}")
         self.codec = codec
         self.active: dict[bytes, _Served] = {}
-        self._decided: dict[int, tuple[Any, _Served]] = {}  # id(goal msg) -> accepted goal
+        self._decoded: dict[int, tuple[Any, Any]] = {}  # id(goal msg) -> (msg, goal)
         self._server: Any = None
 
     def on_start(self) -> None:
@@ -78,83 +86,87 @@ class ActionExporter(WireEndpoint):
 
     def on_stop(self) -> None:
         for served in list(self.active.values()):
-            served.handle.cancel()
+            if served.handle is not None:
+                served.handle.cancel()
         if self._server is not None:
             self._server.destroy()
             self._server = None
 
-    # --- rclpy's side: queue, answer later --------------------------------------------------
-    async def _on_goal_request(self, msg: Any) -> Any:
-        from rclpy.task import Future
-
-        decision = Future(executor=self.ros.executor)  # type: ignore[no-untyped-call]
-        self._queue("goal", (msg, decision))
-        return await decision  # the bus's verdict, on its next turn
+    # --- rclpy's side ---------------------------------------------------------------------
+    def _on_goal_request(self, msg: Any) -> Any:
+        response = _rclpy_action().GoalResponse
+        try:
+            goal = self.codec.goal_from_ros(msg)
+        except WireError as exc:
+            self.stats.errors += 1
+            self.log.warning("goal for %s rejected: %s", self.codec.ros_name, exc)
+            return response.REJECT
+        if not (self.running and self.runtime.bus.accepts(self.interface, goal)):
+            return response.REJECT
+        self._decoded[id(msg)] = (msg, goal)
+        return response.ACCEPT
 
     def _on_accepted(self, ros_goal: Any) -> None:
-        _msg, served = self._decided.pop(id(ros_goal.request))
-        served.ros_goal = ros_goal
-        self.active[bytes(ros_goal.goal_id.uuid)] = served
+        _msg, goal = self._decoded.pop(id(ros_goal.request))
         from rclpy.impl.implementation_singleton import rclpy_implementation
 
         # executing from now on, without an execute coroutine (see the module's docstring)
         ros_goal._update_state(rclpy_implementation.GoalEvent.EXECUTE)
-        if served.early is not None:
-            self._feedback(served, served.early)
-        served.handle.on_done(lambda _h: self._server.notify_execute(ros_goal, self._finish))
+        served = _Served(goal, self.now(), ros_goal)
+        self.active[bytes(ros_goal.goal_id.uuid)] = served
+        self._queue("start", served)
 
     def _on_cancel_request(self, ros_goal: Any) -> Any:
         served = self.active.get(bytes(ros_goal.goal_id.uuid))
         if served is None:
             return _rclpy_action().CancelResponse.REJECT
-        self._queue("cancel", served)
+        self._queue("cancel", served)  # after its "start": the inbox keeps the order
         return _rclpy_action().CancelResponse.ACCEPT
 
     def _finish(self, ros_goal: Any) -> Any:
         """rclpy's execute step, run once the bus goal has ended: its final state and result."""
         served = self.active.pop(bytes(ros_goal.goal_id.uuid))
-        status = served.handle.status
+        self.stats.sent += 1
+        handle = served.handle
+        if handle is None:  # the bus refused it when it came to start it
+            ros_goal.abort()
+            return self.codec.result_to_ros(self.codec.failure(served.refused), GoalStatus.ABORTED)
+        status = handle.status
         if status is GoalStatus.SUCCEEDED:
             ros_goal.succeed()
         elif status is GoalStatus.CANCELED and ros_goal.is_cancel_requested:
             ros_goal.canceled()
         else:  # aborted, or canceled on the bus's side: no ROS 2 client asked for it
             ros_goal.abort()
-        self.stats.sent += 1
-        return self.codec.result_to_ros(served.handle.result, status)
+        return self.codec.result_to_ros(handle.result, status)
 
     # --- the bus's side ---------------------------------------------------------------------
     def handle(self, kind: str, msg: Any) -> None:
+        served: _Served = msg
         if kind == "cancel":
-            msg.handle.cancel()
+            if served.handle is not None:
+                served.handle.cancel()
             return
-        goal_msg, decision = msg
-        decision.set_result(self._decide(goal_msg))
-
-    def _decide(self, goal_msg: Any) -> Any:
-        reject = _rclpy_action().GoalResponse.REJECT
         try:
-            goal = self.codec.goal_from_ros(goal_msg)
-        except WireError as exc:
-            self.stats.errors += 1
-            self.log.warning("goal for %s rejected: %s", self.codec.ros_name, exc)
-            return reject
-        try:
-            handle = self.runtime.bus.send_goal(self.interface, goal)
+            handle = self.runtime.bus.send_goal(self.interface, served.goal)
         except BusError as exc:
-            self.log.warning("goal for %s rejected: %s", self.codec.ros_name, exc)
-            return reject
+            self._refused(served, str(exc))
+            return
         if handle.status is GoalStatus.REJECTED:
-            return reject
-        served = _Served(handle, self.now(), early=handle.feedback)  # given in execute
+            self._refused(served, "rejected")
+            return
+        served.handle = handle
+        if handle.feedback is not None:  # given as it started, before we could listen
+            self._feedback(served, handle.feedback)
         handle.on_feedback(lambda fb: self._feedback(served, fb))
-        self._decided[id(goal_msg)] = (goal_msg, served)
-        return _rclpy_action().GoalResponse.ACCEPT
+        handle.on_done(lambda _h: self._server.notify_execute(served.ros_goal, self._finish))
+
+    def _refused(self, served: _Served, reason: str) -> None:
+        self.log.warning("goal for %s refused: %s", self.codec.ros_name, reason)
+        served.refused = reason
+        self._server.notify_execute(served.ros_goal, self._finish)
 
     def _feedback(self, served: _Served, feedback: Any) -> None:
-        if served.ros_goal is None:
-            served.early = feedback  # the latest only, as a late ROS 2 subscriber would get
-            return
         elapsed = self.now() - served.started
         served.ros_goal.publish_feedback(self.codec.feedback_to_ros(feedback, elapsed))
         self.stats.sent += 1
@@ -189,6 +201,7 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
         self.timeout_s = timeout_s
         self.check_period = check_period
         self.pending: dict[int, _Pending] = {}
+        self.server_heard: float | None = None  # runtime time the server was last seen
         self._count = 0
         self._client: Any = None
 
@@ -274,6 +287,8 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
 
     def _check(self) -> None:
         now, ready = self.now(), self._client.server_is_ready()
+        if ready:
+            self.server_heard = now
         for key in list(self.pending):
             pending = self.pending[key]
             if ready:
