@@ -12,12 +12,16 @@ import time
 from pathlib import Path
 
 import pytest
+from numpy.random import default_rng as rng
 
-from amiro.core import names
+from amiro.core import names, registry
 from amiro.core.clock import SimClock
+from amiro.core.config import ConfigError
 from amiro.core.messages import Header, People, Person, Point
 from amiro.core.runtime import Runtime
 from amiro.deploy.people import TrackedPeoplePublisher, finder_tracker
+from amiro.perception.config import PerceptionConfig
+from amiro.perception.stack import PerceptionInputs
 from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.context import RosContext
 from amiro.ros2.env import ros_environment
@@ -81,9 +85,12 @@ def test_ros4hri_from_another_stack_reaches_the_bus(domain_id: int) -> None:
     talker.add(Ros2Bridge(a))
     talker.add(HriPublisher(a))
     hearer.add(Ros2Bridge(b))
-    hearer.add(HriListener(b, topic="/test/people"))
+    hearer.add(HriListener(b, topic=names.HRI_PEOPLE))
     heard: list[People] = []
-    hearer.bus.subscribe("/test/people", People, heard.append, depth=100)
+    hearer.bus.subscribe(names.HRI_PEOPLE, People, heard.append, depth=100)
+    # perception.backend: hri, as the edge builds it: the people the other stack tracks
+    cfg = PerceptionConfig(backend="hri")
+    finder = registry.create("perception", "hri", PerceptionInputs(cfg, rng(), bus=hearer.bus))
     talker.start()
     hearer.start()
     sent = People(
@@ -116,3 +123,8 @@ def test_ros4hri_from_another_stack_reaches_the_bus(domain_id: int) -> None:
     assert got["maria"].name == "Maria" and got["t9"].name is None
     assert (got["maria"].position.x, got["maria"].position.y) == (2.5, 1.0)
     assert math.isclose(got["maria"].confidence, 0.8, rel_tol=1e-6)
+    seen = {p.track_id: p for p in finder.look()}
+    assert seen["maria"].name == "Maria" and seen["t9"].name is None
+    assert (seen["maria"].position.x, seen["maria"].position.y) == (2.5, 1.0)
+    with pytest.raises(ConfigError, match="hri reads ROS4HRI"):
+        registry.create("perception", "hri", PerceptionInputs(cfg, rng()))

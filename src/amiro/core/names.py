@@ -49,6 +49,7 @@ ROTATE = "/amiro/navigation/rotate"  # action: turn in place by an angle
 
 # --- perception and activity --------------------------------------------------------------
 PEOPLE = "/amiro/people"  # String (JSON): the people tracked
+HRI_PEOPLE = "/amiro/hri/people"  # People: another stack's ROS4HRI persons (perception hri)
 OBSERVATIONS = "/amiro/sim/observations"  # CameraObservations from the simulated head
 SKELETONS = "/amiro/sim/skeletons"  # Skeleton
 

@@ -36,7 +36,7 @@ from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
 from amiro.ros2.context import RosContext
 from amiro.ros2.endpoint import WireEndpoint
-from amiro.ros2.hri import HriPublisher
+from amiro.ros2.hri import HriListener, HriPublisher
 from amiro.ros2.services import RemoteService, ServiceExporter
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import SystemConfig, home_path
@@ -152,6 +152,8 @@ def _run_process(
     ]
     if node.role == "edge":  # the people perception tracks, on ROS4HRI as well
         runtime.add(HriPublisher(ros))
+        if cfg.perception.backend == "hri":  # or the people another HRI stack tracks
+            runtime.add(HriListener(ros, names.HRI_PEOPLE))
     if node.role == "edge" and uses_nav2(cfg):  # MoveTo is a client of the robot's Nav2
         world = World.load(home_path(cfg), cfg.sim.resolution)
         endpoints.append(add_nav2_move_to(runtime, ros, cfg, world, node.action_timeout_s))
