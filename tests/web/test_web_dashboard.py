@@ -223,7 +223,7 @@ def test_every_string_in_french_and_romanian(page: Page, lang: str, estop: str, 
     expect(page.locator("#timeline")).to_contain_text(say)
     expect(page.locator("#lights-kitchen")).to_contain_text(":")
     if lang == "fr":
-        shot(page, "web-fr.png")
+        shot(page, "web-fr.png", full_page=True)
     page.select_option("#ui-lang", "en")
 
 

@@ -35,11 +35,12 @@ METRIC_INFO: dict[str, dict[str, Any]] = {
 DEMO_DAYS = 14
 
 
-def demo_measurements(users: list[str], today: date, seed: int = 1) -> list[HealthMeasurement]:
-    """``DEMO_DAYS`` days up to ``today`` for each user: blood pressure and heart rate
-    twice a day, steps and sleep once; a gentle drift so the trends say something."""
+def demo_measurements(users: list[str], now: datetime, seed: int = 1) -> list[HealthMeasurement]:
+    """``DEMO_DAYS`` days up to ``now`` for each user (none later): blood pressure and heart
+    rate twice a day, steps and sleep once; a gentle drift so the trends say something."""
     rng = np.random.default_rng(seed)
     out: list[HealthMeasurement] = []
+    today = now.date()
 
     def at(day: date, hour: int) -> str:
         return datetime.combine(day, time(hour), UTC).isoformat()
@@ -63,12 +64,12 @@ def demo_measurements(users: list[str], today: date, seed: int = 1) -> list[Heal
             out.append(HealthMeasurement(user, "steps", round(steps), at(day, 21)))
             sleep = float(np.clip(6.8 + rng.normal(0, 0.6), 4.0, 9.5))
             out.append(HealthMeasurement(user, "sleep", round(sleep, 1), at(day, 7)))
-    return out
+    return [m for m in out if datetime.fromisoformat(m.ts) <= now]
 
 
-def seed_demo(store: HealthStore, users: list[str], today: date, seed: int = 1) -> bool:
+def seed_demo(store: HealthStore, users: list[str], now: datetime, seed: int = 1) -> bool:
     """Fill an empty store with demo data; False (nothing written) when it holds any."""
     if store.count() or not users:
         return False
-    store.add_many(demo_measurements(users, today, seed))
+    store.add_many(demo_measurements(users, now, seed))
     return True

@@ -39,7 +39,11 @@ async function api(path, body) {
   return data;
 }
 
-function show(text) { $("action-result").textContent = text; }
+let shown = null;  // the last message, as a key and values, so a new language re-renders it
+function show(text, values) {
+  shown = values === undefined ? null : [text, values];
+  $("action-result").textContent = values === undefined ? text : t(text, values);
+}
 
 function el(tag, text, attrs = {}) {
   const e = document.createElement(tag);
@@ -257,7 +261,7 @@ $("estop").addEventListener("click", async () => {
 $("fall").addEventListener("click", async () => {
   try {
     const r = await api("/scenarios", { name: "fall", user: residents[0] || "" });
-    show(t("scenario_started", { name: "fall", id: r.id, priority: r.priority }));
+    show("scenario_started", { name: "fall", id: r.id, priority: r.priority });
   } catch (e) { show(e.message); }
 });
 
@@ -291,6 +295,7 @@ function onLanguage(next) {
   $("chat-lang").value = next;
   for (const k of Object.keys(seen)) delete seen[k];
   fillChatUsers();
+  if (shown) show(...shown);
   if (healthInfo) fillMetrics();
   if (map) { render(last); loadHealth().catch((e) => show(e.message)); }
 }
@@ -309,14 +314,14 @@ async function main() {
   $("scenarios").replaceChildren(...Object.entries(beh.scenarios).map(([name, priority]) => {
     const b = el("button", `${pretty(name)} · ${priority}`, { id: `scenario-${name}`, type: "button" });
     b.addEventListener("click", async () => {
-      try { const r = await api("/scenarios", { name, user: residents[0] || "" }); show(t("scenario_started", { name, id: r.id, priority: r.priority })); } catch (e) { show(e.message); }
+      try { const r = await api("/scenarios", { name, user: residents[0] || "" }); show("scenario_started", { name, id: r.id, priority: r.priority }); } catch (e) { show(e.message); }
     });
     return b;
   }));
   $("tasks").replaceChildren(...beh.task_types.map((type) => {
     const b = el("button", type, { id: `task-${type}`, type: "button" });
     b.addEventListener("click", async () => {
-      try { const r = await api("/tasks", { type, params: TASK_DEFAULTS[type] || {} }); show(t("task_queued", { type, run: r.run })); } catch (e) { show(e.message); }
+      try { const r = await api("/tasks", { type, params: TASK_DEFAULTS[type] || {} }); show("task_queued", { type, run: r.run }); } catch (e) { show(e.message); }
     });
     return b;
   }));
