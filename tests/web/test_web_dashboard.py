@@ -124,10 +124,17 @@ def test_the_map_draws_every_door_open_or_closed(site: tuple[Running, str], page
     )
     assert {label["room"] for label in scene["labels"]} == set(world.home.rooms)
     assert scene["robot"] is not None and [p["name"] for p in scene["people"]] == ["maria"]
+    fitted = scene["scale"]
+    page.click("#zoom-in")
+    assert page.evaluate("window.amiroScene.scale") == pytest.approx(fitted * 1.25)
+    page.click("#zoom-fit")
+    assert page.evaluate("window.amiroScene.scale") == pytest.approx(fitted)
     page.check("#lidar")
     page.wait_for_function("() => window.amiroScene.scan > 50", timeout=10_000)
     shot(page.locator("#map-card"), "web-map.png")
     page.uncheck("#lidar")
+    page.wait_for_timeout(700)  # longer than a poll: no scan comes back once switched off
+    assert page.evaluate("window.amiroScene.scan") == 0
     running.served.gateway.call(lambda: world.set_door("bedroom_door", True)).result(5)
 
 

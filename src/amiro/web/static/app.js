@@ -1,7 +1,7 @@
 // The dashboard: plain JS modules, no build step.  State arrives over the websocket; actions
 // are JSON POSTs that carry the session's CSRF token.
 import { drawHealthChart } from "./chart.js";
-import { languageSelect, lang, SPEECH_LANG, t, translatePage } from "./i18n.js";
+import { languageSelect, lang, SPEECH_LANG, t, translatePage, word } from "./i18n.js";
 import { HomeMap } from "./map.js";
 
 const TASK_DEFAULTS = {
@@ -22,6 +22,7 @@ let last = {};
 let residents = [];
 let healthInfo = null;
 let lastHealth = null;
+let scenarios = {};
 const seen = {};  // signatures of the lists last rendered, so unchanged ones are left alone
 const $ = (id) => document.getElementById(id);
 const pretty = (name) => String(name ?? "").replace(/_/g, " ");
@@ -42,7 +43,8 @@ async function api(path, body) {
 let shown = null;  // the last message, as a key and values, so a new language re-renders it
 function show(text, values) {
   shown = values === undefined ? null : [text, values];
-  $("action-result").textContent = values === undefined ? text : t(text, values);
+  const named = values && values.name ? { ...values, name: word(values.name) } : values;
+  $("action-result").textContent = values === undefined ? text : t(text, named);
 }
 
 function el(tag, text, attrs = {}) {
@@ -90,13 +92,15 @@ const NARRATED = new Set(["notification", "graph_submitted", "graph_suspended", 
 export function narrate(ev) {
   const v = { ...ev };
   if (ev.type === "task_finished") {
-    return t(ev.result === "success" ? "ev_task_success" : "ev_task_failure", { ...v, result: pretty(ev.result) });
+    return t(ev.result === "success" ? "ev_task_success" : "ev_task_failure", { ...v, result: word(ev.result) });
   }
-  if (ev.type === "notification") { v.reason = ev.reason || ev.kind; v.user = ev.user || t("someone"); v.kind = pretty(ev.kind); }
+  if (ev.type === "notification") { v.reason = ev.reason || ev.kind; v.user = ev.user || t("someone"); v.kind = word(ev.kind); }
   if (ev.type === "heard") v.speaker = ev.speaker || t("someone");
-  if (ev.type === "activity_recognised") v.activity = pretty(ev.activity);
+  if (ev.type === "activity_recognised") v.activity = word(ev.activity);
+  if (ev.type === "ack") v.status = word(ev.status);
+  if (ev.room) v.room = word(ev.room);
   if (ev.type === "plan") v.summary = ev.summary || (ev.steps || []).join(", ");
-  if (ev.type === "graph_finished") v.outcome = pretty(ev.outcome);
+  if (ev.type === "graph_finished") v.outcome = word(ev.outcome);
   if (NARRATED.has(ev.type)) return t(`ev_${ev.type}`, v);
   const detail = Object.entries(ev).filter(([k, x]) => !["t", "type", "graph", "task"].includes(k) && x !== null && x !== "")
     .map(([k, x]) => `${k}: ${typeof x === "object" ? JSON.stringify(x) : x}`).join(", ");
@@ -151,7 +155,7 @@ function toggle(id, onClick) {
 function buildRooms() {
   const cards = Object.keys(home.rooms).map((room) => {
     const card = el("div", undefined, { class: "room", "data-room": room });
-    card.append(el("h3", pretty(room)), el("div", undefined, { class: "readings", id: `readings-${room}` }));
+    card.append(el("h3", word(room), { "data-room-name": room }), el("div", undefined, { class: "readings", id: `readings-${room}` }));
     const send = (device, state) => api("/devices", { room, device, state }).catch((e) => show(e.message));
     const lights = toggle(`lights-${room}`, () => send("lights", lights.getAttribute("aria-checked") === "true" ? "off" : "on"));
     const blinds = toggle(`blinds-${room}`, () => send("blinds", blinds.getAttribute("aria-checked") === "true" ? "close" : "open"));
@@ -195,7 +199,7 @@ function render(state) {
   renderRooms(state);
   const acks = (state.acks || []).slice().reverse();
   if (changed("acks", [acks, lang()])) {
-    $("acks").replaceChildren(...(acks.length ? acks.map((a) => el("li", `${a.id}: ${a.status} (${a.ts.replace("T", " ").slice(0, 19)})`))
+    $("acks").replaceChildren(...(acks.length ? acks.map((a) => el("li", `${a.id}: ${word(a.status)} (${a.ts.replace("T", " ").slice(0, 19)})`))
       : [el("li", t("no_notifications"), { class: "muted" })]));
   }
   const stop = Boolean(state.estop);
@@ -214,7 +218,10 @@ function connect() {
 // --- lidar ----------------------------------------------------------------------------------
 let scanTimer = null;
 async function pollScan() {
-  try { map.setScan((await api("/scan")).points); } catch (e) { show(e.message); }
+  try {
+    const { points } = await api("/scan");
+    if ($("lidar").checked) map.setScan(points);  // an answer arriving after "off" is dropped
+  } catch (e) { show(e.message); }
 }
 $("lidar").addEventListener("change", () => {
   clearInterval(scanTimer);
@@ -296,6 +303,8 @@ function onLanguage(next) {
   for (const k of Object.keys(seen)) delete seen[k];
   fillChatUsers();
   if (shown) show(...shown);
+  for (const h of document.querySelectorAll("[data-room-name]")) h.textContent = word(h.dataset.roomName);
+  for (const b of document.querySelectorAll("[data-scenario]")) b.textContent = `${word(b.dataset.scenario)} · ${scenarios[b.dataset.scenario]}`;
   if (healthInfo) fillMetrics();
   if (map) { render(last); loadHealth().catch((e) => show(e.message)); }
 }
@@ -309,10 +318,11 @@ async function main() {
   csrf = me.csrf;
   $("who").textContent = me.user;
   home = await api("/map");
-  map = new HomeMap($("map"), home, t);
+  map = new HomeMap($("map"), home, word);
   const beh = await api("/behaviours");
+  scenarios = beh.scenarios;
   $("scenarios").replaceChildren(...Object.entries(beh.scenarios).map(([name, priority]) => {
-    const b = el("button", `${pretty(name)} · ${priority}`, { id: `scenario-${name}`, type: "button" });
+    const b = el("button", `${word(name)} · ${priority}`, { id: `scenario-${name}`, type: "button", "data-scenario": name });
     b.addEventListener("click", async () => {
       try { const r = await api("/scenarios", { name, user: residents[0] || "" }); show("scenario_started", { name, id: r.id, priority: r.priority }); } catch (e) { show(e.message); }
     });

@@ -8,10 +8,9 @@ export function drawHealthChart(canvas, data, t, locale) {
   const dpr = window.devicePixelRatio || 1;
   const W = Math.max(240, canvas.parentElement.clientWidth), H = Math.round(Math.min(260, Math.max(180, W * 0.5)));
   canvas.style.width = `${W}px`; canvas.style.height = `${H}px`;
-  canvas.width = Math.round(W * dpr); canvas.height = Math.round(H * dpr);
+  canvas.width = Math.round(W * dpr); canvas.height = Math.round(H * dpr);  // resets the canvas
   const ctx = canvas.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  ctx.clearRect(0, 0, W, H);
   const additive = data.metric === "steps" || data.metric === "sleep";
   const keyOf = (name, i) => (name === "diastolic" ? "mean2" : additive ? "total" : "mean");
   const series = data.series.map((name, i) => ({

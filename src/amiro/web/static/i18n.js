@@ -45,6 +45,7 @@ const STRINGS = {
     ev_plan: "Plan {number}: {summary}", ev_replan: "Re-planning: {reason}", ev_plan_failed: "No plan: {explanation}",
     ev_plan_completed: "Errand completed ({plans} plan(s))", ev_chat: "{who}: {text}",
     someone: "someone",
+    w_done: "done", w_postponed: "postponed", w_failed: "failed", w_completed: "completed", w_cancelled: "cancelled", w_person_not_found: "person not found", w_person_unreachable: "person unreachable", w_not_confirmed: "not confirmed", w_confirmed_by_voice: "confirmed by voice", w_success: "succeeded", w_failure: "failed", w_preempted: "preempted", w_drink_water: "drinking water", w_standing_up: "standing up", w_hand_waving: "waving", w_play_phone: "on the phone", w_typing: "typing", w_pointing: "pointing", w_sneeze_cough: "sneezing or coughing", w_touch_chest: "touching the chest", w_falling: "falling", w_idle: "resting", w_living_room: "living room", w_kitchen: "kitchen", w_bedroom: "bedroom", w_bathroom: "bathroom", w_hallway: "hallway", w_hydration: "hydration", w_fall: "fall", w_go_to: "go to",
   },
   fr: {
     title: "Tableau de bord amiro", signin_title: "amiro — connexion", user: "Utilisateur", password: "Mot de passe",
@@ -79,12 +80,13 @@ const STRINGS = {
     ev_task_started: "▶ {task_type} [{task}]", ev_task_success: "✔ {task_type} [{task}] réussie",
     ev_task_failure: "✘ {task_type} [{task}] {result}", ev_task_preempted: "⏸ {task} interrompue par {by}",
     ev_graph_finished: "Comportement {graph} terminé : {outcome}", ev_say: "Le robot dit ({lang}) : « {text} »",
-    ev_heard: "Entendu {speaker} : « {text} » → {intent}", ev_person_found: "{person} trouvée dans la pièce {room}",
-    ev_search_room: "Personne ici ; recherche dans la pièce {room}", ev_activity_recognised: "Vu {person} : {activity}",
+    ev_heard: "Entendu {speaker} : « {text} » → {intent}", ev_person_found: "{person} trouvée : {room}",
+    ev_search_room: "Pas vue ici ; recherche : {room}", ev_activity_recognised: "Vu {person} : {activity}",
     ev_ack: "Accusé {id} envoyé à la maison : {status}", ev_fall_detected: "Chute détectée : {person}",
     ev_plan: "Plan {number} : {summary}", ev_replan: "Nouveau plan : {reason}", ev_plan_failed: "Aucun plan : {explanation}",
     ev_plan_completed: "Course terminée ({plans} plan(s))", ev_chat: "{who} : {text}",
     someone: "quelqu'un",
+    w_done: "fait", w_postponed: "reporté", w_failed: "échec", w_completed: "terminé", w_cancelled: "annulé", w_person_not_found: "personne introuvable", w_person_unreachable: "personne inaccessible", w_not_confirmed: "non confirmé", w_confirmed_by_voice: "confirmé à la voix", w_success: "réussie", w_failure: "échouée", w_preempted: "interrompue", w_drink_water: "boit de l'eau", w_standing_up: "se lève", w_hand_waving: "fait signe", w_play_phone: "au téléphone", w_typing: "tape au clavier", w_pointing: "montre du doigt", w_sneeze_cough: "éternue ou tousse", w_touch_chest: "se touche la poitrine", w_falling: "tombe", w_idle: "se repose", w_living_room: "salon", w_kitchen: "cuisine", w_bedroom: "chambre", w_bathroom: "salle de bain", w_hallway: "couloir", w_hydration: "hydratation", w_fall: "chute", w_go_to: "aller à",
   },
   ro: {
     title: "Panoul amiro", signin_title: "amiro — autentificare", user: "Utilizator", password: "Parolă",
@@ -119,12 +121,13 @@ const STRINGS = {
     ev_task_started: "▶ {task_type} [{task}]", ev_task_success: "✔ {task_type} [{task}] reușită",
     ev_task_failure: "✘ {task_type} [{task}] {result}", ev_task_preempted: "⏸ {task} întreruptă de {by}",
     ev_graph_finished: "Comportamentul {graph} s-a încheiat: {outcome}", ev_say: "Robotul spune ({lang}): „{text}”",
-    ev_heard: "Auzit {speaker}: „{text}” → {intent}", ev_person_found: "{person} găsită în camera {room}",
-    ev_search_room: "Nu este aici; caută în camera {room}", ev_activity_recognised: "A văzut {person}: {activity}",
+    ev_heard: "Auzit {speaker}: „{text}” → {intent}", ev_person_found: "{person} găsită în {room}",
+    ev_search_room: "Nu este aici; caută în {room}", ev_activity_recognised: "A văzut {person}: {activity}",
     ev_ack: "Confirmare {id} trimisă casei: {status}", ev_fall_detected: "Cădere detectată: {person}",
     ev_plan: "Planul {number}: {summary}", ev_replan: "Replanificare: {reason}", ev_plan_failed: "Niciun plan: {explanation}",
     ev_plan_completed: "Sarcină încheiată ({plans} plan(uri))", ev_chat: "{who}: {text}",
     someone: "cineva",
+    w_done: "făcut", w_postponed: "amânat", w_failed: "eșuat", w_completed: "încheiat", w_cancelled: "anulat", w_person_not_found: "persoana nu a fost găsită", w_person_unreachable: "persoana nu poate fi atinsă", w_not_confirmed: "neconfirmat", w_confirmed_by_voice: "confirmat vocal", w_success: "reușită", w_failure: "eșuată", w_preempted: "întreruptă", w_drink_water: "bea apă", w_standing_up: "se ridică", w_hand_waving: "face cu mâna", w_play_phone: "la telefon", w_typing: "tastează", w_pointing: "arată cu degetul", w_sneeze_cough: "strănută sau tușește", w_touch_chest: "își atinge pieptul", w_falling: "cade", w_idle: "se odihnește", w_living_room: "sufragerie", w_kitchen: "bucătărie", w_bedroom: "dormitor", w_bathroom: "baie", w_hallway: "hol", w_hydration: "hidratare", w_fall: "cădere", w_go_to: "deplasare",
   },
 };
 
@@ -156,6 +159,13 @@ export function translatePage(root = document) {
   for (const el of root.querySelectorAll("[data-i18n-aria]")) el.setAttribute("aria-label", t(el.dataset.i18nAria));
   const title = document.querySelector("title[data-i18n]");
   if (title) document.title = title.textContent;
+}
+
+// A data word (room, activity, outcome, status): its translation when there is one, else
+// the word itself, made readable.
+export function word(name) {
+  const key = `w_${name}`;
+  return STRINGS[current][key] ?? STRINGS.en[key] ?? String(name ?? "").replace(/_/g, " ");
 }
 
 export function setLang(next, onChange) {

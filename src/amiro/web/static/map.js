@@ -11,10 +11,10 @@ export const COLORS = {
 };
 
 export class HomeMap {
-  constructor(canvas, home, t) {
+  constructor(canvas, home, word) {
     this.canvas = canvas;
     this.home = home;
-    this.t = t;
+    this.word = word;  // rooms and activities in the page's language
     this.zoom = 1;
     this.pan = [0, 0];
     this.state = {};
@@ -45,9 +45,9 @@ export class HomeMap {
     const width = Math.min(room, Math.round(height * w / h) + 24);
     this.canvas.style.width = `${width}px`;
     this.canvas.style.height = `${height}px`;
-    const dpr = window.devicePixelRatio || 1;
-    this.canvas.width = Math.round(width * dpr);
-    this.canvas.height = Math.round(height * dpr);
+    const dpr = window.devicePixelRatio || 1;  // the buffer matches the content box (no border)
+    this.canvas.width = Math.round(this.canvas.clientWidth * dpr);
+    this.canvas.height = Math.round(this.canvas.clientHeight * dpr);
     this.dpr = dpr;
   }
 
@@ -78,8 +78,9 @@ export class HomeMap {
     const X = (x) => px + z * (ox + x * s0), Y = (y) => py + z * (oy + (h - y) * s0);
     const scene = { scale: s, layers: [], doors: [], labels: [], people: [], robot: null, path: 0, scan: 0 };
     const layer = (name) => scene.layers.push(name);
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
-    ctx.clearRect(0, 0, W, H);
     const poly = (pts) => {
       ctx.beginPath();
       pts.forEach(([x, y], i) => (i ? ctx.lineTo(X(x), Y(y)) : ctx.moveTo(X(x), Y(y))));
@@ -133,7 +134,7 @@ export class HomeMap {
     ctx.font = "600 12px system-ui, sans-serif";
     for (const p of this.state.people || []) {
       ctx.fillStyle = COLORS.person; ctx.beginPath(); ctx.arc(X(p.x), Y(p.y), Math.max(6, 0.22 * s), 0, 2 * Math.PI); ctx.fill();
-      const label = p.activity && p.activity !== "idle" ? `${p.name} · ${p.activity.replace(/_/g, " ")}` : p.name;
+      const label = p.activity && p.activity !== "idle" ? `${p.name} · ${this.word(p.activity)}` : p.name;
       this.pill(ctx, label, X(p.x) + 10, Y(p.y) - 12, COLORS.personText);
       scene.people.push({ name: p.name, activity: p.activity, x: X(p.x), y: Y(p.y), label });
     }
@@ -153,7 +154,7 @@ export class HomeMap {
     ctx.font = "600 13px system-ui, sans-serif";
     for (const [name, pts] of Object.entries(home.rooms)) {
       const [cx, cy] = centroid(pts);
-      const text = name.replace(/_/g, " ");
+      const text = this.word(name);
       const w = ctx.measureText(text).width;
       this.pill(ctx, text, X(cx) - w / 2, Y(cy), COLORS.label);
       scene.labels.push({ room: name, x: X(cx), y: Y(cy) });
