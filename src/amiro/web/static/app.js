@@ -239,7 +239,8 @@ async function loadHealth() {
   const user = $("health-user").value, metric = $("health-metric").value;
   const summary = $("health-summary");
   if (!user) { summary.replaceChildren(el("dd", t("no_health"))); drawHealthChart($("health-chart"), { metric, series: [], days: [] }, t, lang()); return; }
-  const data = await api(`/health/${user}/${metric}?days=14`);
+  const raw = await api(`/health/${user}/${metric}?days=14`);
+  const data = { ...raw, unit: word(raw.unit) };  // "steps" is a word to translate
   $("demo-badge").hidden = !data.demo;
   lastHealth = data;
   drawHealthChart($("health-chart"), data, t, lang());
