@@ -87,6 +87,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         # stdout at /dev/null so the interpreter's final flush does not fail again.
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
+    except OSError as exc:
+        # A path the user gave that cannot be read or written (missing, a file where a
+        # folder should be, no permission): one line, unless -v asks for the traceback.
+        if exc.filename is None or args.verbose:
+            raise
+        print(f"amiro: error: {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return 2
 
 
 def exit_process(code: int) -> NoReturn:

@@ -27,7 +27,7 @@ def _edge_and_cloud() -> tuple[Runtime, PeopleTracker, RemoteRobot]:
     tracker = PeopleTracker()
     runtime.add(TrackedPeoplePublisher(tracker, period_s=0.5))
     home = World.load(default_home_path()).home
-    robot = runtime.add(RemoteRobot(home, [], names.LOCALIZATION, runtime.add(BehaviorRequests())))
+    robot = runtime.add(RemoteRobot(home, {}, names.LOCALIZATION, runtime.add(BehaviorRequests())))
     runtime.start()
     return runtime, tracker, robot
 

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 from fastapi.testclient import TestClient
-from web_served import Running, login
+from web_served import Running, login, start_served
 
 from amiro.environment.messages import HealthMeasurement
 
@@ -105,3 +106,110 @@ def test_health_chart_data_and_a_chat_answered_from_the_store(
         time.sleep(0.05)
         transcript = client.get("/api/state").json()["transcript"]
     assert any(m["who"] == "maria" and m["text"] == text for m in transcript)
+
+
+def test_a_fall_from_the_dashboard_preempts_a_running_hydration(
+    client: TestClient, running: Running
+) -> None:
+    headers = {"X-CSRF-Token": login(client)}
+    scenarios = client.get("/api/behaviours").json()["scenarios"]
+    assert scenarios["fall"] == 100 and scenarios["hydration"] == 5  # the behaviours' own
+    engine = running.served.system.engine
+    res = client.post(
+        "/api/scenarios", json={"name": "hydration", "user": "maria"}, headers=headers
+    )
+    assert res.json()["priority"] == 5
+    wait_for(lambda: (engine.current() or {}).get("name") == "hydration")
+    res = client.post("/api/scenarios", json={"name": "fall", "user": "maria"}, headers=headers)
+    assert res.status_code == 200 and res.json()["priority"] == 100
+    wait_for(lambda: (engine.current() or {}).get("name") == "fall")
+    assert "hydration" in [q["name"] for q in engine.queue_snapshot()]  # put aside
+    state = client.get("/api/state").json()
+    assert state["current"]["name"] == "fall" and state["current"]["priority"] == 100
+    gateway = running.served.gateway
+    now = gateway.call(gateway.robot.state).result(5)["current"]  # one moment of the runtime
+    run = engine.runs[now["graph"]]
+    assert [s["task"] for s in now["progress"]["done"]] == [r.task_id for r in run.records]
+    following = run.graph.tasks[now["task"]].on_success  # a task id, or End
+    assert [s["task"] for s in now["progress"]["ahead"][:1]] == (
+        [following] if isinstance(following, str) else []
+    )
+    explicit = {"name": "hydration", "user": "maria", "priority": 7}
+    assert client.post("/api/scenarios", json=explicit, headers=headers).json()["priority"] == 7
+
+
+def test_emergency_stop_lidar_and_doors(client: TestClient, running: Running) -> None:
+    headers = {"X-CSRF-Token": login(client)}
+    assert client.post("/api/estop", json={"engaged": True}, headers=headers).status_code == 200
+    wait_for(lambda: client.get("/api/state").json()["estop"] is True)
+    client.post("/api/estop", json={"engaged": False}, headers=headers)
+    wait_for(lambda: client.get("/api/state").json()["estop"] is False)
+    home = running.served.system.world.home
+    wait_for(lambda: len(client.get("/api/scan").json()["points"]) > 50)
+    points = client.get("/api/scan?most=40").json()["points"]
+    assert 10 <= len(points) <= 40
+    assert all(
+        -0.5 <= x <= home.size[0] + 0.5 and -0.5 <= y <= home.size[1] + 0.5 for x, y in points
+    )
+    doors = client.get("/api/state").json()["doors"]
+    assert doors == {d.name: d.open for d in home.doors}
+    world = running.served.system.world
+    running.served.gateway.call(lambda: world.set_door("kitchen_door", False)).result(5)
+    wait_for(lambda: client.get("/api/state").json()["doors"]["kitchen_door"] is False)
+
+
+BAD_INPUT: list[tuple[str, str, dict[str, object] | None]] = [
+    ("POST", "/api/scenarios", {"name": "hydration", "priority": 101}),
+    ("POST", "/api/scenarios", {"name": "hydration", "priority": "high"}),
+    ("POST", "/api/scenarios", {"name": "dance"}),
+    ("POST", "/api/estop", {}),
+    ("POST", "/api/estop", {"engaged": "yes"}),
+    ("POST", "/api/estop", {"engaged": True, "why": "x"}),
+    ("GET", "/api/scan?most=5", None),
+    ("GET", "/api/scan?most=lots", None),
+    ("GET", "/api/health/maria/steps?days=0", None),
+    ("GET", "/api/health/maria/steps?days=400", None),
+    ("GET", "/api/health/maria/weight", None),
+]
+
+
+def test_bad_input_is_a_422_with_one_line(client: TestClient) -> None:
+    headers = {"X-CSRF-Token": login(client)}  # one served system for every case
+    for method, path, body in BAD_INPUT:
+        res = client.request(method, path, json=body, headers=headers)
+        assert res.status_code == 422, (method, path, body, res.text)
+        assert "\n" not in res.json()["detail"], (path, body)
+    assert client.post("/api/estop", json={"engaged": True}).status_code == 403  # no CSRF
+
+
+def test_health_charts_carry_units_ranges_and_the_demo_mark(client: TestClient) -> None:
+    login(client)
+    users = client.get("/api/health/users").json()
+    assert users["demo"] is False and users["users"] == []  # the tests' served app: no demo
+    bp = client.get("/api/health/maria/blood_pressure").json()
+    assert bp["unit"] == "mmHg" and bp["series"] == ["systolic", "diastolic"]
+    assert bp["ranges"]["diastolic"] == [60, 80] and bp["demo"] is False
+
+
+def test_demo_health_data_is_seeded_and_marked() -> None:
+    demo = start_served(demo=True)
+    try:
+        with TestClient(demo.served.app) as client:
+            login(client)
+            users = client.get("/api/health/users").json()
+            assert users["demo"] is True and users["users"] == ["maria"]
+            bp = client.get("/api/health/maria/blood_pressure?days=14").json()
+            assert bp["demo"] is True and all(d["count"] == 2 for d in bp["days"][:-1])
+            clock = demo.served.runtime.clock
+            assert bp["latest"]["ts"] <= clock.iso(clock.now())  # nothing in the future
+            assert all(d["mean2"] < d["mean"] for d in bp["days"])  # diastolic below systolic
+    finally:
+        demo.loop.stop()
+        demo.served.stop()
+
+
+def wait_for(check: Callable[[], bool], timeout: float = 20.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not check():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.05)

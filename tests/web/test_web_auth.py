@@ -32,6 +32,10 @@ def test_login_session_and_csrf(client: TestClient) -> None:
         client.post("/api/chat", json=body, headers={"X-CSRF-Token": "x" + csrf}).status_code == 403
     )
     assert client.post("/api/chat", json=body, headers={"X-CSRF-Token": csrf}).status_code == 200
+    client.cookies.clear()  # else the jar keeps the real cookie beside the tampered one
+    client.cookies.set("amiro_session", cookie)
+    assert client.get("/api/me").status_code == 200  # a cookie set this way is sent
+    client.cookies.clear()
     client.cookies.set("amiro_session", cookie[:-3] + "abc")  # tampered signature
     assert client.get("/api/me").status_code == 401
 

@@ -84,7 +84,7 @@ def test_dashboard_in_a_real_browser(site: tuple[Running, str], page: Page) -> N
     page.click("#chat-send")
     expect(page.locator("#chat-reply")).to_contain_text("C'est fait")
     expect(page.locator("#transcript")).to_contain_text("allume la lumière dans la cuisine")
-    expect(page.locator("#lights-kitchen")).to_have_text("lights off")  # the lights are on
+    expect(page.locator("#lights-kitchen")).to_have_attribute("aria-checked", "true")  # on
 
     page.select_option("#chat-lang", "en")
     page.fill("#chat-input", "go to the kitchen")

@@ -23,9 +23,13 @@ class Running:
     loop: RuntimeLoop
 
 
-def start_served(speed: float = 20.0) -> Running:
+def start_served(speed: float = 20.0, demo: bool = False) -> Running:
+    """The default household; ``demo``: with the seeded demo health data of ``amiro serve``
+    (off by default: tests add the measurements they check)."""
     cfg = load_serve_config(None)
-    web = WebConfig(admin_password=SecretStr(PASSWORD), api_token=SecretStr(TOKEN), port=0)
+    web = WebConfig(
+        admin_password=SecretStr(PASSWORD), api_token=SecretStr(TOKEN), port=0, demo_data=demo
+    )
     served = assemble(type(cfg)(cfg.system, web), SimClock(speed=speed))
     served.system.start()
     loop = RuntimeLoop(served.runtime)

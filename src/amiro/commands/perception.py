@@ -89,9 +89,10 @@ def _evaluate(args: argparse.Namespace) -> int:
     if args.people < 1 or args.images < 1:
         raise ConfigError("--people and --images must be at least 1")
     spec = DatasetSpec(people=args.people, images=args.images)
+    # the output folder first: a bad --out is an error now, not after the evaluation
+    plot = None if args.no_plot else args.plot or out_file(args, "perception_error_by_distance.png")
     report = evaluate(np.random.default_rng(args.seed), spec, progress=show_progress(args))
-    if not args.no_plot:
-        plot = args.plot or out_file(args, "perception_error_by_distance.png")
+    if plot is not None:
         report["plot"] = str(plot_by_distance(report, plot))
     if args.json:
         emit_json(report)

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from amiro.commands.support import add_command, add_group, emit_report
+from amiro.commands.support import add_command, add_group, emit_report, writable_file
 
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
@@ -39,7 +39,8 @@ def _topics(text: str) -> list[str] | None:
 def _record_hydration(args: argparse.Namespace) -> int:
     from amiro.recording.runs import record_hydration
 
-    report = record_hydration(args.out, args.seed, _topics(args.topics))
+    out = writable_file(args.out, "--out")
+    report = record_hydration(out, args.seed, _topics(args.topics))
     text = f"recorded {report['messages']} messages to {report['file']}"
     return emit_report(args, report, text)
 

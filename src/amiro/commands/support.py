@@ -52,6 +52,18 @@ def out_dir(args: argparse.Namespace) -> Path:
     return out
 
 
+def writable_file(path: Path, flag: str) -> Path:
+    """``path`` if a file can be written there (checked before the work that fills it)."""
+    from amiro.core.config import ConfigError
+
+    try:
+        with path.open("ab"):
+            pass
+    except OSError as exc:
+        raise ConfigError(f"{flag} {path}: cannot write: {exc.strerror}") from None
+    return path
+
+
 def out_file(args: argparse.Namespace, name: str) -> Path:
     """``name`` inside the ``--out`` folder."""
     return out_dir(args) / name

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from amiro.behavior.loader import load_behavior
 from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechRequest
@@ -27,7 +28,7 @@ from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.home.world import HomeSpec
-from amiro.system import SHIPPED_BEHAVIORS, SystemConfig
+from amiro.system import SHIPPED_BEHAVIORS, SystemConfig, shipped_behavior
 from amiro.system.dialogue_sources import environment_sources
 from amiro.web.config import WebConfig
 from amiro.web.server import WebServer
@@ -77,9 +78,11 @@ def pose_topic(cfg: SystemConfig) -> str:
     return names.GROUND_TRUTH if cfg.navigation.localization == "oracle" else names.LOCALIZATION
 
 
-def behavior_kinds(cfg: SystemConfig) -> list[str]:
-    """The behaviours an edge built from ``cfg`` knows."""
-    return sorted({*SHIPPED_BEHAVIORS, *cfg.behavior.handlers})
+def behavior_kinds(cfg: SystemConfig) -> dict[str, int]:
+    """The behaviours an edge built from ``cfg`` knows, each with its own priority."""
+    files = {name: shipped_behavior(name) for name in SHIPPED_BEHAVIORS}
+    files.update(cfg.behavior.handlers)
+    return {kind: load_behavior(files[kind]).priority for kind in sorted(files)}
 
 
 def add_cloud_services(

@@ -25,13 +25,13 @@ class RemoteRobot(Node):
     def __init__(
         self,
         home: HomeSpec,
-        scenarios: list[str],
+        scenarios: dict[str, int],
         pose_topic: str,
         requests: BehaviorRequests,
     ) -> None:
         super().__init__("remote_robot")
         self._home = home
-        self._scenarios = sorted(scenarios)
+        self._scenarios = dict(sorted(scenarios.items()))
         self.pose_topic = pose_topic
         self.requests = requests
         self.pose: Pose2D | None = None
@@ -48,8 +48,8 @@ class RemoteRobot(Node):
     def home(self) -> HomeSpec:
         return self._home
 
-    def scenarios(self) -> list[str]:
-        return list(self._scenarios)
+    def scenarios(self) -> dict[str, int]:
+        return dict(self._scenarios)
 
     def state(self) -> dict[str, Any]:
         return {
@@ -57,6 +57,7 @@ class RemoteRobot(Node):
             "people": dashboard_people(self.people),
             "current": self.current,
             "queue": [q for q in self.queued.values() if q["graph"] != self._current_graph()],
+            "doors": {d.name: d.open for d in self._home.doors},  # as configured: no live view
         }
 
     def run_task(self, task_type: str, params: dict[str, Any], priority: int) -> str:

@@ -85,7 +85,8 @@ def open_engine(url: str | None) -> Engine:
         Base.metadata.create_all(engine)
     except DBAPIError as exc:  # a missing folder, no permission, a server that is not there
         engine.dispose()
-        raise ConfigError(f"database '{url}': cannot open it: {exc.orig}") from None
+        reason = " ".join(str(exc.orig).split())  # psycopg's message has several lines
+        raise ConfigError(f"database '{url}': cannot open it: {reason}") from None
     return engine
 
 

@@ -73,6 +73,7 @@ class MqttBridgeNode(Node):
         self.counts: Counter[str] = Counter()
         self.last_error = ""
         self.connected = False
+        self._unreachable = False  # paho thread: the outage was already reported
         self._client: mqtt.Client | None = None
 
     # --- lifecycle ------------------------------------------------------------------------
@@ -109,6 +110,7 @@ class MqttBridgeNode(Node):
             client.username_pw_set(self.config.username, self.config.password)
         client.will_set(availability_topic(self.home), b"offline", qos=1, retain=True)
         client.on_connect = self._on_connect
+        client.on_connect_fail = self._on_connect_fail
         client.on_disconnect = self._on_disconnect
         client.on_message = self._on_message
         client.reconnect_delay_set(min_delay=1, max_delay=30)
@@ -133,6 +135,15 @@ class MqttBridgeNode(Node):
             ):
                 client.publish(topic, payload, qos=1, retain=True)
         self.connected = True
+        self._unreachable = False
+
+    def _on_connect_fail(self, _c: mqtt.Client, _u: Any) -> None:
+        """The broker cannot be reached (a wrong host or port, or it is down): said once,
+        not at every retry, since paho keeps retrying."""
+        if not self._unreachable:
+            self._unreachable = True
+            where = f"{self.host}:{self.port}"
+            self.inbox.post(partial(self._note_error, f"broker {where} unreachable; retrying"))
 
     def _on_disconnect(self, _c: mqtt.Client, _u: Any, _f: Any, rc: Any, _p: Any) -> None:
         self.connected = False

@@ -246,6 +246,19 @@ def format_real(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def format_confusion(labels: list[str], matrix: list[list[int]]) -> list[str]:
+    """The confusion matrix with its headers: rows are numbered true classes, columns the
+    predicted classes by the same numbers (full names would not fit side by side)."""
+    width = max(4, len(str(max((max(row) for row in matrix), default=0))) + 1)
+    name_w = max(len(n) for n in labels) + 4
+    header = " " * (name_w + 3) + "".join(f"{i:>{width}}" for i in range(1, len(labels) + 1))
+    lines = ["confusion (rows: true class, columns: predicted class, by number):", header]
+    for i, (name, row) in enumerate(zip(labels, matrix, strict=True), start=1):
+        label = f"{i:>2} {name}"
+        lines.append(f"  {label:<{name_w + 1}}" + "".join(f"{v:>{width}d}" for v in row))
+    return lines
+
+
 def format_report(report: dict[str, Any]) -> str:
     if report["data"] == "real":
         return format_real(report)
@@ -264,10 +277,7 @@ def format_report(report: dict[str, Any]) -> str:
             f"every file: known {report['known_accuracy']}, unknown rejected "
             f"{report['unknown_rejection']}, {report['fall_alerts_per_hour']} fall alerts/h"
         )
-    labels = report["confusion"]["labels"]
-    lines.append("confusion (rows: true, columns: predicted):")
-    for name, row in zip(labels, report["confusion"]["matrix"], strict=True):
-        lines.append(f"  {name:>13} " + " ".join(f"{v:4d}" for v in row))
+    lines += format_confusion(report["confusion"]["labels"], report["confusion"]["matrix"])
     if report["data"] == "synthetic":
         lines.append("(synthetic motion: not comparable with the paper's real recordings)")
     return "\n".join(lines)

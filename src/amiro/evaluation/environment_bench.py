@@ -107,7 +107,9 @@ def bench_web(requests: int = 2000) -> dict[str, float]:
     from amiro.web.served import assemble, load_serve_config
 
     cfg = load_serve_config(None)
-    web = WebConfig(admin_password=SecretStr("bench"), api_token=SecretStr("bench-token"))
+    web = WebConfig(
+        admin_password=SecretStr("bench"), api_token=SecretStr("bench-token"), demo_data=False
+    )
     served = assemble(type(cfg)(cfg.system, web), SimClock())
     served.system.start()
     served.runtime.spin_for(1.0)

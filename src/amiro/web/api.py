@@ -16,14 +16,23 @@ from fastapi import APIRouter, HTTPException, Path, Query, Request
 
 from amiro.behavior.task import TaskError, task_types
 from amiro.core import names
-from amiro.core.messages import Notification
+from amiro.core.messages import Notification, String
 from amiro.environment.assembly import Environment
 from amiro.environment.days import clock_date
 from amiro.environment.messages import DEVICE_STATES, HEALTH_METRICS, DeviceCommand
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.web.chat import ChatPort
 from amiro.web.gateway import GatewayNode
-from amiro.web.models import NAME, ChatBody, DeviceBody, ScenarioBody, SensorBody, TaskBody
+from amiro.web.health import METRIC_INFO
+from amiro.web.models import (
+    NAME,
+    ChatBody,
+    DeviceBody,
+    EstopBody,
+    ScenarioBody,
+    SensorBody,
+    TaskBody,
+)
 from amiro.web.robot import RobotPort
 
 T = TypeVar("T")
@@ -40,6 +49,7 @@ class Backend:
     sensors: SimulatedSensorsNode
     gateway: GatewayNode
     chat: ChatPort
+    demo: bool = False  # the health store holds seeded demo data
 
 
 def build_router(backend: Backend) -> APIRouter:
@@ -78,6 +88,7 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.get("/behaviours")
     def behaviours() -> dict[str, Any]:
+        """Task types, and each scenario with the priority it runs at."""
         return {"task_types": sorted(task_types()), "scenarios": robot.scenarios()}
 
     @router.post("/tasks")
@@ -92,13 +103,29 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.post("/scenarios")
     async def run_scenario(body: ScenarioBody) -> dict[str, Any]:
-        if body.name not in robot.scenarios():
-            known = ", ".join(robot.scenarios())
-            raise HTTPException(422, f"unknown scenario '{body.name}' (known: {known})")
+        """A notification of that kind, at the behaviour's own priority unless one is given
+        (a fall at 100 preempts a hydration reminder at 5)."""
+        own = robot.scenarios()
+        if body.name not in own:
+            raise HTTPException(422, f"unknown scenario '{body.name}' (known: {', '.join(own)})")
         ident = f"web-{body.name}-{next(counter)}"
-        note = Notification(ident, body.user, body.name, body.priority, reason="dashboard")
+        priority = own[body.name] if body.priority is None else body.priority
+        note = Notification(ident, body.user, body.name, priority, reason="dashboard")
         await on_runtime(lambda: gw.runtime.bus.publish(names.NOTIFICATIONS, note))
-        return {"id": ident}
+        return {"id": ident, "priority": priority}
+
+    @router.post("/estop")
+    async def estop(body: EstopBody) -> dict[str, Any]:
+        """Engage or release the emergency stop (every base driver and the navigation obey
+        ``names.EMERGENCY_STOP``)."""
+        msg = String("stop" if body.engaged else "release")
+        await on_runtime(lambda: gw.runtime.bus.publish(names.EMERGENCY_STOP, msg))
+        return {"engaged": body.engaged}
+
+    @router.get("/scan")
+    async def scan(most: int = Query(default=360, ge=10, le=2000)) -> dict[str, Any]:
+        """The last lidar scan in the map frame (the map's "lidar" switch polls it)."""
+        return {"points": await on_runtime(lambda: gw.scan_points(most))}
 
     @router.post("/chat")
     async def chat(body: ChatBody, request: Request) -> dict[str, Any]:
@@ -114,7 +141,12 @@ def build_router(backend: Backend) -> APIRouter:
 
     @router.get("/health/users")
     async def health_users() -> dict[str, Any]:
-        return {"users": await on_runtime(env.health.users), "metrics": list(HEALTH_METRICS)}
+        return {
+            "users": await on_runtime(env.health.users),
+            "metrics": list(HEALTH_METRICS),
+            "info": METRIC_INFO,
+            "demo": backend.demo,
+        }
 
     @router.get("/health/{user}/{metric}")
     async def health(
@@ -131,7 +163,8 @@ def build_router(backend: Backend) -> APIRouter:
             trend = env.health.trend(user, metric, today, days)
             return {"latest": latest.to_dict() if latest else None, **trend.to_dict()}
 
-        return {"user": user, "metric": metric, **await on_runtime(query)}
+        info = {**METRIC_INFO[metric], "demo": backend.demo}
+        return {"user": user, "metric": metric, **info, **await on_runtime(query)}
 
     @router.post("/devices")
     async def device(body: DeviceBody) -> dict[str, Any]:

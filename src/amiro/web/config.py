@@ -19,4 +19,9 @@ class WebConfig(Section):
     )
     session_max_age_s: int = Field(default=12 * 3600, gt=0)
     secure_cookies: bool = Field(default=False, description="set behind HTTPS")
+    demo_data: bool = Field(
+        default=True,
+        description="seed 14 days of demo health data (marked as demo) into an in-memory "
+        "health store; never into a database",
+    )
     state_period_s: float = Field(default=0.2, gt=0.0, description="wall s between map updates")

@@ -13,22 +13,28 @@ from collections.abc import Callable
 from concurrent.futures import Future
 from typing import Any, TypeVar
 
+import numpy as np
+
 from amiro.core import names
 from amiro.core.inbox import Inbox
 from amiro.core.messages import (
     Acknowledgement,
     BehaviorEvent,
+    LaserScan,
     Path,
     SensorReading,
     SpeechHeard,
     SpeechRequest,
+    String,
 )
 from amiro.core.node import Node
+from amiro.core.safety import estop_engaged
 from amiro.environment.devices import SimulatedDevicesNode
 from amiro.environment.messages import DeviceState
 from amiro.web.robot import RobotPort
 
 T = TypeVar("T")
+EVENTS_SHOWN = 120  # the timeline's length: a whole hydration run is about 25 events
 
 
 class GatewayNode(Node):
@@ -37,7 +43,7 @@ class GatewayNode(Node):
         robot: RobotPort,
         devices: SimulatedDevicesNode | None = None,
         period_s: float = 0.1,
-        history: int = 200,
+        history: int = 300,
     ) -> None:
         super().__init__("web_gateway")
         self.robot = robot
@@ -51,6 +57,8 @@ class GatewayNode(Node):
         self.sensors: dict[str, dict[str, float]] = {}
         self.devices: dict[str, dict[str, str]] = {}
         self.path: list[tuple[float, float]] = []
+        self.scan: LaserScan | None = None
+        self.estop = False
 
     def on_start(self) -> None:
         self.create_subscription(names.SAY, SpeechRequest, self._on_say, 100)
@@ -60,6 +68,8 @@ class GatewayNode(Node):
         self.create_subscription(names.ACK, Acknowledgement, self._on_ack, 1000)
         self.create_subscription(names.SENSORS, SensorReading, self._on_reading, 1000)
         self.create_subscription(names.DEVICE_STATE, DeviceState, self._on_device, 1000)
+        self.create_subscription(names.SCAN, LaserScan, self._on_scan, 1)
+        self.create_subscription(names.EMERGENCY_STOP, String, self._on_estop, 10)
         self.create_timer(self.period_s, self._tick)
         if self.devices_node is not None:  # their first reports went out before this started
             for (room, device), state in self.devices_node.states.items():
@@ -101,6 +111,26 @@ class GatewayNode(Node):
     def _on_ack(self, ack: Acknowledgement) -> None:
         self.acks.append({"id": ack.id, "status": ack.status, "ts": ack.ts})
 
+    def _on_scan(self, scan: LaserScan) -> None:
+        self.scan = scan
+
+    def _on_estop(self, msg: String) -> None:
+        self.estop = estop_engaged(msg.data)
+
+    def scan_points(self, most: int = 360) -> list[tuple[float, float]]:
+        """The last lidar scan's hits in the map frame, at most ``most`` of them (the laser
+        is at the base's centre; the pose is the robot's as the dashboard shows it)."""
+        pose, scan = self.robot.state().get("robot"), self.scan
+        if scan is None or pose is None:
+            return []
+        ranges = np.asarray(scan.ranges, dtype=np.float64)
+        angles = scan.angles() + pose["theta"]
+        hit = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges < scan.range_max)
+        step = max(1, int(np.ceil(hit.sum() / most)))
+        r, a = ranges[hit][::step], angles[hit][::step]
+        xs, ys = pose["x"] + r * np.cos(a), pose["y"] + r * np.sin(a)
+        return [(round(float(x), 2), round(float(y), 2)) for x, y in zip(xs, ys, strict=True)]
+
     def _on_reading(self, r: SensorReading) -> None:
         self.sensors.setdefault(r.room, {})[r.sensor] = round(r.value, 2)
 
@@ -121,7 +151,8 @@ class GatewayNode(Node):
             **self.robot.state(),
             "path": self.path,
             "transcript": list(self.transcript)[-30:],
-            "events": list(self.events)[-30:],
+            "events": list(self.events)[-EVENTS_SHOWN:],
+            "estop": self.estop,
             "acks": list(self.acks)[-20:],
             "sensors": {room: dict(values) for room, values in self.sensors.items()},
             "devices": {room: dict(states) for room, states in self.devices.items()},

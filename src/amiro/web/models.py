@@ -37,7 +37,13 @@ class TaskBody(Body):
 class ScenarioBody(Body):
     name: str = Field(pattern=NAME)
     user: str = Field(default="", pattern=r"^[a-z0-9_]{0,40}$")
-    priority: int = Field(default=5, ge=0, le=100)
+    priority: int | None = Field(
+        default=None, ge=0, le=100, description="none: the behaviour's own priority"
+    )
+
+
+class EstopBody(Body):
+    engaged: bool = Field(strict=True)
 
 
 class DeviceBody(Body):

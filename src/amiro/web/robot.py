@@ -11,8 +11,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Protocol
 
-from amiro.behavior.graph import TaskGraph
-from amiro.behavior.task import make_task
+from amiro.behavior.engine import GraphRun
+from amiro.behavior.graph import End, TaskGraph
+from amiro.behavior.handlers import HandlerError
+from amiro.behavior.task import TaskError, make_task
 from amiro.core.messages import Pose2D
 from amiro.home.world import HomeSpec
 
@@ -26,12 +28,14 @@ class RobotPort(Protocol):
         """The home's rooms, walls, doors and furniture, drawn as the map."""
         ...
 
-    def scenarios(self) -> list[str]:
-        """The behaviour kinds a notification can start."""
+    def scenarios(self) -> dict[str, int]:
+        """The behaviour kinds a notification can start, each with its own priority (a fall
+        is raised at the fall behaviour's priority, so it preempts a hydration reminder)."""
         ...
 
     def state(self) -> dict[str, Any]:
-        """``robot`` pose, ``people`` seen, ``current`` task and ``queue`` (runtime thread)."""
+        """``robot`` pose, ``people`` seen, ``current`` task (with ``progress`` when known),
+        ``queue`` and ``doors`` open or closed (runtime thread)."""
         ...
 
     def run_task(self, task_type: str, params: dict[str, Any], priority: int) -> str:
@@ -44,6 +48,24 @@ def single_task_graph(task_type: str, params: dict[str, Any], priority: int) -> 
     """The behaviour the dashboard's task form runs: one task, nothing after it."""
     task = make_task(task_type, params)
     return TaskGraph(f"web_{task_type.lower()}", priority).add("task", task)
+
+
+DEFAULT_PRIORITY = 5  # a behaviour kind whose graph cannot be built without a payload
+
+
+def progress(run: GraphRun, task_id: str) -> dict[str, Any]:
+    """A run's steps for a progress bar: the tasks done (with their result), the one running,
+    and the ones that follow it if each succeeds (the graph's success path)."""
+    done = [{"task": r.task_id, "type": r.type, "result": r.result} for r in run.records]
+    ahead: list[dict[str, Any]] = []
+    edge = run.graph.tasks[task_id].on_success
+    seen = {task_id}
+    while not isinstance(edge, End) and edge not in seen:
+        seen.add(edge)
+        node = run.graph.tasks[edge]
+        ahead.append({"task": node.id, "type": node.type_name})
+        edge = node.on_success
+    return {"done": done, "ahead": ahead}
 
 
 def pose_dict(pose: Pose2D) -> dict[str, float]:
@@ -61,19 +83,29 @@ class SystemRobot:
     def home(self) -> HomeSpec:
         return self.system.world.home
 
-    def scenarios(self) -> list[str]:
-        return self.system.handlers.kinds()
+    def scenarios(self) -> dict[str, int]:
+        handlers, out = self.system.handlers, {}
+        for kind in handlers.kinds():
+            try:
+                out[kind] = handlers.build(kind).priority
+            except (HandlerError, TaskError, ValueError):
+                out[kind] = DEFAULT_PRIORITY
+        return out
 
     def state(self) -> dict[str, Any]:
         engine, pose = self.system.engine, self.system.robot_pose()
+        current = engine.current()
+        if current is not None:
+            current["progress"] = progress(engine.runs[current["graph"]], current["task"])
         return {
             "robot": pose_dict(pose) if pose is not None else None,
             "people": [
                 {"name": p.name, "x": round(p.x, 2), "y": round(p.y, 2), "activity": p.activity}
                 for p in self.system.people()
             ],
-            "current": engine.current(),
+            "current": current,
             "queue": engine.queue_snapshot(),
+            "doors": dict(self.system.world.doors),
         }
 
     def run_task(self, task_type: str, params: dict[str, Any], priority: int) -> str:

@@ -94,18 +94,25 @@ class Served:
 def assemble(cfg: ServeConfig, clock: Clock, chat: ChatPort | None = None) -> Served:
     """The system, the gateway and the app (nothing started); the chat box talks to the
     system's dialogue manager unless another ``chat`` is given."""
+    from amiro.environment.days import clock_datetime
     from amiro.system import build_system
     from amiro.web.api import Backend
     from amiro.web.app import create_app
     from amiro.web.chat import DialogueChat
     from amiro.web.gateway import GatewayNode
+    from amiro.web.health import seed_demo
     from amiro.web.robot import SystemRobot
 
     system = build_system(cfg.system, clock)
     robot = SystemRobot(system)
     gateway = system.runtime.add(GatewayNode(robot, system.environment.devices))
     chat = chat or DialogueChat(system.dialogue.manager)
-    backend = Backend(robot, system.environment, system.sensors, gateway, chat)
+    demo = False
+    if cfg.web.demo_data and cfg.system.environment.database is None:
+        residents = [p.name for p in cfg.system.people()]
+        now = clock_datetime(clock)
+        demo = seed_demo(system.environment.health, residents, now, cfg.system.seed)
+    backend = Backend(robot, system.environment, system.sensors, gateway, chat, demo)
     app = create_app(backend, make_authenticator(cfg.web), cfg.web)
     return Served(system, gateway, app)
 

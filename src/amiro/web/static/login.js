@@ -1,5 +1,8 @@
-"use strict";
 // Sign in with a JSON POST (cross-site forms cannot send JSON without a CORS preflight).
+import { languageSelect, t, translatePage } from "./i18n.js";
+
+languageSelect(document.getElementById("ui-lang"));
+translatePage();
 document.getElementById("login-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
   const body = {
@@ -14,6 +17,6 @@ document.getElementById("login-form").addEventListener("submit", async (ev) => {
   if (res.ok) {
     window.location.href = "/";
   } else {
-    document.getElementById("login-error").textContent = "Wrong user or password.";
+    document.getElementById("login-error").textContent = t("wrong_login");
   }
 });
