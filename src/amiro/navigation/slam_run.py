@@ -28,13 +28,13 @@ class SlamOutcome:
 def slam_over(
     scans: list[CarmenScan],
     odoms: list[Pose2D],
-    fov_deg: float = 180.0,
+    fov_deg: float | None = None,
     max_range: float = 12.0,
     loop_closure: bool = True,
 ) -> SlamOutcome:
     """Graph SLAM over ``scans`` with ``odoms`` (one per scan) as the odometry."""
     slam = GraphSlam(GraphSlamParams(slam=tracking_params(max_range), loop_closure=loop_closure))
-    fov = math.radians(fov_deg)
+    fov = None if fov_deg is None else math.radians(fov_deg)
     t0 = time.process_time()
     for scan, odom in zip(scans, odoms, strict=True):
         slam.update(scan.ranges, scan.angles(fov), odom)
@@ -53,7 +53,7 @@ def save_map_png(grid: GridMap, path: Path) -> None:
 def run_slam(
     log: Path,
     out_dir: Path,
-    fov_deg: float = 180.0,
+    fov_deg: float | None = None,
     max_range: float = 12.0,
     loop_closure: bool = True,
 ) -> dict[str, Any]:
