@@ -145,3 +145,21 @@ def test_flaser_beams_follow_carmens_geometry_for_the_beam_count() -> None:
         assert angles[0] == pytest.approx(-90.0)
         assert np.diff(angles) == pytest.approx(np.full(n - 1, step))
     assert np.degrees(flaser_angles(5)) == pytest.approx([-90, -45, 0, 45, 90])
+
+
+def test_a_log_of_reanchoring_lines_only_carries_no_odometry(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    # Orebro: each scan followed only by gmapping's re-anchoring to its own pose
+    lines = [_odom(0, 0, 0, "0.5")]
+    for k in range(12):
+        lines += [_flaser(0.5 * k, 0, 0, f"{k + 1}.0"), _odom(0.5 * k, 0, 0, f"{k + 1}.0")]
+    with caplog.at_level(logging.WARNING):
+        scans = read_carmen(_write(tmp_path, lines))
+    assert not any(s.odometry for s in scans)
+    assert any("no odometry" in r.message for r in caplog.records)
+    # one real increment per scan is odometry
+    moving = [_odom(0, 0, 0, "0.5")]
+    for k in range(12):
+        moving += [_odom(0.5 * k, 0, 0, f"{k + 0.9}"), _flaser(0.5 * k, 0, 0, f"{k + 1}.0")]
+    assert all(s.odometry for s in read_carmen(_write(tmp_path, moving, "b.log")))

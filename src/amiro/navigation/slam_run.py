@@ -27,7 +27,7 @@ class SlamOutcome:
 
 def slam_over(
     scans: list[CarmenScan],
-    odoms: list[Pose2D],
+    odoms: list[Pose2D | None],
     fov_deg: float | None = None,
     max_range: float = 12.0,
     loop_closure: bool = True,
@@ -41,6 +41,11 @@ def slam_over(
     slam.finish()
     elapsed = time.process_time() - t0
     return SlamOutcome(slam.trajectory(), slam.map(), elapsed, slam)
+
+
+def odometry(scans: list[CarmenScan]) -> list[Pose2D | None]:
+    """The scans' odometry; None for a log that carries none."""
+    return [s.odom if s.odometry else None for s in scans]
 
 
 def save_map_png(grid: GridMap, path: Path) -> None:
@@ -58,7 +63,7 @@ def run_slam(
     loop_closure: bool = True,
 ) -> dict[str, Any]:
     scans = read_carmen(log)
-    run = slam_over(scans, [s.odom for s in scans], fov_deg, max_range, loop_closure)
+    run = slam_over(scans, odometry(scans), fov_deg, max_range, loop_closure)
     slam, poses = run.slam, run.poses
     out_dir.mkdir(parents=True, exist_ok=True)
     save_map(run.grid, out_dir / "map.yaml")
