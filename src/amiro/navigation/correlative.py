@@ -68,13 +68,8 @@ class CorrelativeMatcher:
         known_coarse = maximum_filter(known, size=size, mode="constant")
         self.fine = (fine.astype(np.float32), known.astype(np.float32))
         self.coarse = (coarse.astype(np.float32), known_coarse.astype(np.float32))
-        # a third, wider level for windows of many metres (big loops): max-pooled again
-        wide = coarse_factor * wide_factor + 1
-        self.wide = (
-            maximum_filter(fine, size=wide, mode="constant").astype(np.float32),
-            maximum_filter(known, size=wide, mode="constant").astype(np.float32),
-        )
         self.wide_factor = wide_factor
+        self._wide: tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]] | None = None
         self.min_known = min_known
         self.resolution = resolution
         self.origin = origin
@@ -114,6 +109,19 @@ class CorrelativeMatcher:
         others = [s for s, p in refined[1:] if p.distance_to(best) >= self.separation]
         return ScanMatch(best, best_score, max(others, default=0.0))
 
+    def _wide_level(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+        """A third, wider level for windows of many metres (big loops), max-pooled again
+        from the coarse one; built the first time a wide window needs it."""
+        if self._wide is None:
+            # the coarse level pools factor + 1 cells; together: factor * wide_factor + 1
+            size = self.factor * (self.wide_factor - 1) + 1
+            hit, known = self.coarse
+            self._wide = (
+                maximum_filter(hit, size=size, mode="constant"),
+                maximum_filter(known, size=size, mode="constant"),
+            )
+        return self._wide
+
     def _wide_candidates(
         self, px: FloatArray, py: FloatArray, guess: Pose2D, thetas: FloatArray, n_xy: int
     ) -> list[Pose2D]:
@@ -125,7 +133,7 @@ class CorrelativeMatcher:
         n_wide = math.ceil(n_xy / self.wide_factor)
         offsets = step * np.arange(-n_wide, n_wide + 1)
         sub = thetas[::2] if thetas.size > 8 else thetas
-        wide = self._scores(self.wide, px, py, guess.x, guess.y, sub, offsets)
+        wide = self._scores(self._wide_level(), px, py, guess.x, guess.y, sub, offsets)
         near = self.factor * np.arange(-self.wide_factor, self.wide_factor + 1)
         found: list[tuple[float, Pose2D]] = []
         for _, cand in self._distinct_best(wide, sub, offsets, guess, count=WIDE_BRANCHES):

@@ -35,7 +35,8 @@ class Submap:
     def __init__(self, anchor: int, anchor_pose: Pose2D, params: SlamParams, travel_m: float):
         self.anchor = anchor  # keyframe index whose graph pose carries this submap
         self.anchor_pose = anchor_pose  # that keyframe's front-end pose
-        half = params.max_range + 2.0 * travel_m + 1.0
+        # the robot stays within ``travel_m`` of the anchor while the submap is active
+        half = params.max_range + travel_m + 1.0
         origin = (anchor_pose.x - half, anchor_pose.y - half)
         self.levels = [
             LogOddsGrid(
@@ -61,11 +62,11 @@ class Submap:
     def finish(self) -> None:
         """Keep only the finest level, cropped to the cells the scans touched."""
         fine = self.levels[0]
-        seen = np.nonzero(fine.logodds)
-        if seen[0].size:
-            r0, r1 = int(seen[0].min()), int(seen[0].max()) + 1
-            c0, c1 = int(seen[1].min()), int(seen[1].max()) + 1
-            fine.crop(r0, r1, c0, c1)
+        touched = fine.logodds != 0.0
+        rows = np.flatnonzero(touched.any(axis=1))
+        if rows.size:
+            cols = np.flatnonzero(touched.any(axis=0))
+            fine.crop(int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1)
         self.levels = [fine]
 
 
