@@ -35,8 +35,7 @@ class Submap:
     def __init__(self, anchor: int, anchor_pose: Pose2D, params: SlamParams, travel_m: float):
         self.anchor = anchor  # keyframe index whose graph pose carries this submap
         self.anchor_pose = anchor_pose  # that keyframe's front-end pose
-        # the robot stays within ``travel_m`` of the anchor while the submap is active
-        half = params.max_range + travel_m + 1.0
+        half = params.max_range + 2.0 * travel_m + 1.0
         origin = (anchor_pose.x - half, anchor_pose.y - half)
         self.levels = [
             LogOddsGrid(
