@@ -8,9 +8,10 @@ import logging
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from amiro.navigation.carmen import read_carmen
+from amiro.navigation.carmen import flaser_angles, read_carmen
 
 RANGES = "1.0 2.0 3.0"
 
@@ -135,3 +136,30 @@ def test_without_odom_lines_the_laser_odom_fields_are_used(tmp_path: Path) -> No
     assert (scan.odom.x, scan.odom.y, scan.odom.theta) == pytest.approx((4, 5, 0.6))
     assert scan.reference is not None and scan.reference.x == 1.0
     assert list(scan.angles()) == pytest.approx([-math.pi / 2, 0.0, math.pi / 2])
+
+
+def test_flaser_beams_follow_carmens_geometry_for_the_beam_count() -> None:
+    # a SICK's 180 or 360 beams start at -90 degrees and stop one step short of +90
+    for n, step in ((180, 1.0), (181, 1.0), (360, 0.5), (361, 0.5)):
+        angles = np.degrees(flaser_angles(n))
+        assert angles[0] == pytest.approx(-90.0)
+        assert np.diff(angles) == pytest.approx(np.full(n - 1, step))
+    assert np.degrees(flaser_angles(5)) == pytest.approx([-90, -45, 0, 45, 90])
+
+
+def test_a_log_of_reanchoring_lines_only_carries_no_odometry(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    # Orebro: each scan followed only by gmapping's re-anchoring to its own pose
+    lines = [_odom(0, 0, 0, "0.5")]
+    for k in range(12):
+        lines += [_flaser(0.5 * k, 0, 0, f"{k + 1}.0"), _odom(0.5 * k, 0, 0, f"{k + 1}.0")]
+    with caplog.at_level(logging.WARNING):
+        scans = read_carmen(_write(tmp_path, lines))
+    assert not any(s.odometry for s in scans)
+    assert any("no odometry" in r.message for r in caplog.records)
+    # one real increment per scan is odometry
+    moving = [_odom(0, 0, 0, "0.5")]
+    for k in range(12):
+        moving += [_odom(0.5 * k, 0, 0, f"{k + 0.9}"), _flaser(0.5 * k, 0, 0, f"{k + 1}.0")]
+    assert all(s.odometry for s in read_carmen(_write(tmp_path, moving, "b.log")))

@@ -53,3 +53,20 @@ def test_a_featureless_corridor_is_reported_ambiguous() -> None:
     found = matcher.match(px, py, Pose2D(10.0, 1.5, 0.0), SearchWindow(2.0, 0.05))
     assert found.score > 0.6
     assert found.runner_up > 0.95 * found.score
+
+
+def test_a_window_of_metres_is_searched_level_by_level() -> None:
+    # a big loop: the estimate 5 m and 12 degrees off, searched over +-7 m and +-15 degrees
+    world = World.load(default_home_path())
+    truth = world.place("hallway")
+    grid = _mapped(world, [truth])
+    lidar = Lidar()
+    scan = lidar.scan(world.live, truth, 0.0, np.random.default_rng(0)).ranges
+    ok = np.isfinite(scan)
+    px, py = scan[ok] * np.cos(lidar.angles[ok]), scan[ok] * np.sin(lidar.angles[ok])
+    matcher = CorrelativeMatcher(grid.prob, grid.resolution, grid.origin)
+    guess = Pose2D(truth.x - 3.0, truth.y + 4.0, truth.theta - math.radians(12))
+    found = matcher.match(px, py, guess, SearchWindow(7.0, math.radians(15)))
+    assert found.pose.distance_to(truth) < 0.08
+    assert abs(found.pose.theta - truth.theta) < math.radians(1.5)
+    assert found.runner_up < 0.9 * found.score

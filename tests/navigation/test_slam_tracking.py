@@ -81,3 +81,22 @@ def test_a_match_far_from_the_odometry_guess_is_refused() -> None:
     pose, front = _track_a_false_jump(tracking_params().gate_sigmas)
     assert abs(pose.x - 0.2) < 1e-9 and abs(pose.y) < 1e-9
     assert front.refused == 1
+
+
+def test_without_odometry_the_front_end_predicts_with_constant_velocity() -> None:
+    # 0.7 m steps, turning 29 degrees back and forth: beyond Gauss-Newton's basin from a
+    # standing-still guess (a log without odometry, as Orebro)
+    lidar, room = Lidar(), _room()
+    front = SubmapFrontEnd(tracking_params())
+    truth = [Pose2D(0.8 + 0.7 * k, 2.0, 0.5 * (k % 2)) for k in range(8)]
+    poses = []
+    for k, true in enumerate(truth):
+        ranges = lidar.true_ranges(room, true)
+        ok = np.isfinite(ranges)
+        px = ranges[ok] * np.cos(lidar.angles[ok])
+        py = ranges[ok] * np.sin(lidar.angles[ok])
+        poses.append(front.track(px, py, None))
+        front.insert(px, py, keyframe=k)
+    for true, pose in zip(truth, poses, strict=True):
+        assert math.hypot(pose.x - (true.x - 0.8), pose.y - (true.y - 2.0)) < 0.05
+        assert abs(pose.theta - true.theta) < 0.02

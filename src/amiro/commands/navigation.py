@@ -47,7 +47,12 @@ def register(sub: Subcommands) -> None:
     )
     run.add_argument("--carmen", required=True, help="CARMEN log (FLASER and ODOM lines)")
     run.add_argument("--out", default="slam_out", help="directory for map and trajectory")
-    run.add_argument("--fov-deg", type=float, default=180.0, help="laser field of view")
+    run.add_argument(
+        "--fov-deg",
+        type=float,
+        default=None,
+        help="FLASER field of view (default: CARMEN's geometry for the beam count)",
+    )
     run.add_argument("--max-range", type=float, default=12.0, help="ignore returns beyond (m)")
     run.add_argument(
         "--no-loop-closure", action="store_true", help="front end only (submap scan matching)"
@@ -137,7 +142,7 @@ def _slam_run(args: argparse.Namespace) -> int:
     from amiro.core.config import ConfigError
     from amiro.navigation.slam_run import run_slam
 
-    if not 0.0 < args.fov_deg <= 360.0:
+    if args.fov_deg is not None and not 0.0 < args.fov_deg <= 360.0:
         raise ConfigError("--fov-deg must be within (0, 360]")
     if args.max_range <= 0.0:
         raise ConfigError("--max-range must be positive")

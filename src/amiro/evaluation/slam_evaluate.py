@@ -30,7 +30,7 @@ from amiro.core.messages import Pose2D
 from amiro.navigation.carmen import CarmenScan, read_carmen
 from amiro.navigation.metrics import align, ate_rmse
 from amiro.navigation.poses import between
-from amiro.navigation.slam_run import save_map_png, slam_over
+from amiro.navigation.slam_run import odometry, save_map_png, slam_over
 from amiro.sim.base import Odometry
 
 FloatArray = npt.NDArray[np.float64]
@@ -110,7 +110,7 @@ def evaluate_log(
     for drift in drifts:
         odoms = [s.odom for s in scans] if drift == "real" else pepper_odometry(ref, seed)
         print(f"slam evaluate: {name} ({drift} odometry, {len(scans)} scans)", file=sys.stderr)
-        run = slam_over(scans, odoms)
+        run = slam_over(scans, odometry(scans) if drift == "real" else list(odoms))
         rel = relation_error(run.poses, ref, pairs)
         row = {
             "log": name,

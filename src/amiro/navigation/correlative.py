@@ -24,6 +24,12 @@ from amiro.navigation.scan_kernels import lattice_cells, score_lattice
 FloatArray = npt.NDArray[np.float64]
 
 
+# a window wider than this many coarse cells each side is searched with one more level
+WIDE_CELLS = 16
+# the wide level's best distinct poses that are searched again on the coarse lattice
+WIDE_BRANCHES = 8
+
+
 @dataclass(frozen=True)
 class ScanMatch:
     pose: Pose2D
@@ -49,6 +55,7 @@ class CorrelativeMatcher:
         angle_step: float = math.radians(1.0),
         separation: float = 1.0,
         min_known: float = 0.5,
+        wide_factor: int = 4,
     ) -> None:
         hits = np.clip(2.0 * (prob.astype(np.float64) - 0.5), 0.0, 1.0)  # unknown, free: 0
         # a one-cell blur tolerates sub-cell error; x2.5 brings a thin wall's peak back to ~1
@@ -61,6 +68,8 @@ class CorrelativeMatcher:
         known_coarse = maximum_filter(known, size=size, mode="constant")
         self.fine = (fine.astype(np.float32), known.astype(np.float32))
         self.coarse = (coarse.astype(np.float32), known_coarse.astype(np.float32))
+        self.wide_factor = wide_factor
+        self._wide: tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]] | None = None
         self.min_known = min_known
         self.resolution = resolution
         self.origin = origin
@@ -75,9 +84,12 @@ class CorrelativeMatcher:
         n_theta = max(0, math.ceil(window.theta / self.angle_step))
         thetas: FloatArray = guess.theta + self.angle_step * np.arange(-n_theta, n_theta + 1.0)
         n_xy = max(1, math.ceil(window.xy / (self.factor * self.resolution)))
-        offsets = self.factor * np.arange(-n_xy, n_xy + 1)
-        scores = self._scores(self.coarse, px, py, guess.x, guess.y, thetas, offsets)
-        candidates = self._distinct_best(scores, thetas, offsets, guess, count=4)
+        if n_xy > WIDE_CELLS:
+            candidates = self._wide_candidates(px, py, guess, thetas, n_xy)
+        else:
+            offsets = self.factor * np.arange(-n_xy, n_xy + 1)
+            scores = self._scores(self.coarse, px, py, guess.x, guess.y, thetas, offsets)
+            candidates = [p for _, p in self._distinct_best(scores, thetas, offsets, guess, 4)]
         fine_offsets = np.arange(-self.factor, self.factor + 1)
         fine_steps = np.linspace(-self.angle_step, self.angle_step, 5)
         refined: list[tuple[float, Pose2D]] = []
@@ -96,6 +108,46 @@ class CorrelativeMatcher:
         best_score, best = refined[0]
         others = [s for s, p in refined[1:] if p.distance_to(best) >= self.separation]
         return ScanMatch(best, best_score, max(others, default=0.0))
+
+    def _wide_level(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+        """A third, wider level for windows of many metres (big loops), max-pooled again
+        from the coarse one; built the first time a wide window needs it."""
+        if self._wide is None:
+            # the coarse level pools factor + 1 cells; together: factor * wide_factor + 1
+            size = self.factor * (self.wide_factor - 1) + 1
+            hit, known = self.coarse
+            self._wide = (
+                maximum_filter(hit, size=size, mode="constant"),
+                maximum_filter(known, size=size, mode="constant"),
+            )
+        return self._wide
+
+    def _wide_candidates(
+        self, px: FloatArray, py: FloatArray, guess: Pose2D, thetas: FloatArray, n_xy: int
+    ) -> list[Pose2D]:
+        """Branch by one more level: the best distinct poses on a lattice ``wide_factor``
+        coarser (scored on a map max-pooled to match, so no better pose hides under a
+        cell), each searched again on the coarse lattice around it, every second rotation
+        of the wide level's best +-2 steps; the best distinct poses of all of those."""
+        step = self.factor * self.wide_factor
+        n_wide = math.ceil(n_xy / self.wide_factor)
+        offsets = step * np.arange(-n_wide, n_wide + 1)
+        sub = thetas[::2] if thetas.size > 8 else thetas
+        wide = self._scores(self._wide_level(), px, py, guess.x, guess.y, sub, offsets)
+        near = self.factor * np.arange(-self.wide_factor, self.wide_factor + 1)
+        found: list[tuple[float, Pose2D]] = []
+        for _, cand in self._distinct_best(wide, sub, offsets, guess, count=WIDE_BRANCHES):
+            ths = cand.theta + self.angle_step * np.arange(-2.0, 3.0)
+            sc = self._scores(self.coarse, px, py, cand.x, cand.y, ths, near)
+            found.extend(self._distinct_best(sc, ths, near, cand, count=2))
+        found.sort(key=lambda t: -t[0])
+        chosen: list[Pose2D] = []
+        for _, p in found:
+            if all(p.distance_to(q) >= self.separation for q in chosen):
+                chosen.append(p)
+            if len(chosen) == 4:
+                break
+        return chosen
 
     def _scores(
         self,
@@ -120,20 +172,20 @@ class CorrelativeMatcher:
         scores: FloatArray,
         thetas: FloatArray,
         offsets: npt.NDArray[np.int64],
-        guess: Pose2D,
+        centre: Pose2D,
         count: int,
-    ) -> list[Pose2D]:
-        """The best-scoring lattice poses, each at least ``separation`` from the others
-        (greedy non-maximum suppression over the best rotation per translation)."""
+    ) -> list[tuple[float, Pose2D]]:
+        """The best-scoring lattice poses around ``centre`` with their scores, each at least
+        ``separation`` from the others (greedy non-maximum suppression over the best
+        rotation per translation)."""
         best_theta = np.argmax(scores, axis=0)
         plane = np.max(scores, axis=0)
         metres = offsets * self.resolution
         dy, dx = np.meshgrid(metres, metres, indexing="ij")
-        chosen: list[Pose2D] = []
+        chosen: list[tuple[float, Pose2D]] = []
         while len(chosen) < count and np.isfinite(plane).any():
             r, c = np.unravel_index(int(np.argmax(plane)), plane.shape)
-            chosen.append(
-                Pose2D(guess.x + dx[r, c], guess.y + dy[r, c], float(thetas[best_theta[r, c]]))
-            )
+            pose = Pose2D(centre.x + dx[r, c], centre.y + dy[r, c], float(thetas[best_theta[r, c]]))
+            chosen.append((float(plane[r, c]), pose))
             plane[np.hypot(dx - dx[r, c], dy - dy[r, c]) < self.separation] = -np.inf
         return chosen

@@ -17,15 +17,26 @@ FloatArray = npt.NDArray[np.float64]
 
 class LikelihoodField:
     """Log-likelihood of an endpoint per cell: a Gaussian on the distance to the nearest
-    obstacle mixed with a uniform floor for unexplained returns; off-map reads the floor."""
+    obstacle mixed with a uniform floor for unexplained returns; off-map reads the floor.
+
+    Some maps draw the building's boundaries as unknown rather than occupied (the free
+    space simply ends): there the edge of the free space is the obstacle, and the Gaussian
+    reaches into the unknown beyond it, where the walls really are."""
 
     def __init__(self, grid: GridMap, sigma: float = 0.1, z_hit: float = 0.9) -> None:
         self.grid = grid
         occupied = grid.data > 50
+        unknown = grid.data < 0
+        edge = unknown_boundary(grid)
+        if edge is not None:
+            occupied |= edge
         dist = ndimage.distance_transform_edt(~occupied) * grid.resolution
         floor = (1.0 - z_hit) * 0.05  # a random return, per 0.05 m of range
         p = z_hit * np.exp(-0.5 * (dist / sigma) ** 2) + floor
-        p[grid.data < 0] = floor  # unknown cells explain nothing
+        if edge is not None:
+            unknown &= dist > 3.0 * sigma
+        p[unknown] = floor  # unknown cells explain nothing
+        self.boundaries_unknown = edge is not None
         self.floor = float(np.log(floor))
         self.log_p = np.log(p).astype(np.float32)
         self.free = grid.data == FREE
@@ -43,3 +54,18 @@ class LikelihoodField:
     def score(self, xs: FloatArray, ys: FloatArray) -> FloatArray:
         """Summed log-likelihood over the last axis of endpoint arrays shaped (..., beams)."""
         return np.asarray(self.log_likelihoods(xs, ys).sum(axis=-1), dtype=np.float64)
+
+
+def unknown_boundary(grid: GridMap) -> npt.NDArray[np.bool_] | None:
+    """The unknown cells bordering free space, when most of the free space's border is
+    unknown rather than occupied (a map that leaves its walls out); else None."""
+    free = grid.data == FREE
+    unknown = grid.data < 0
+    occupied = grid.data > 50
+    ring = np.ones((3, 3), dtype=bool)
+    border = free & ~ndimage.binary_erosion(free, ring, border_value=1)
+    near_occupied = ndimage.binary_dilation(occupied, ring)
+    open_border = border & ~near_occupied
+    if open_border.sum() <= (border & near_occupied).sum():
+        return None
+    return np.asarray(unknown & ndimage.binary_dilation(free, ring))

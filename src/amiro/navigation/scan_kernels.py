@@ -31,19 +31,24 @@ def score_lattice(
     h, w = hit.shape
     n_theta, n_pts = rows.shape
     n_off = offsets.size
-    out = np.empty((n_theta, n_off, n_off))
+    out = np.zeros((n_theta, n_off, n_off))
+    mass = np.zeros((n_off, n_off))
+    # point by point, a row of the grid at a time: the column offsets read contiguous cells
     for k in range(n_theta):
+        mass[:, :] = 0.0
+        for i in range(n_pts):
+            for a in range(n_off):
+                r = rows[k, i] + offsets[a]
+                if r < 0 or r >= h:
+                    continue
+                for b in range(n_off):
+                    c = cols[k, i] + offsets[b]
+                    if 0 <= c < w:
+                        out[k, a, b] += hit[r, c]
+                        mass[a, b] += known[r, c]
         for a in range(n_off):
             for b in range(n_off):
-                s = 0.0
-                kn = 0.0
-                for i in range(n_pts):
-                    r = rows[k, i] + offsets[a]
-                    c = cols[k, i] + offsets[b]
-                    if 0 <= r < h and 0 <= c < w:
-                        s += hit[r, c]
-                        kn += known[r, c]
-                out[k, a, b] = s / max(kn, min_known)
+                out[k, a, b] /= max(mass[a, b], min_known)
     return out
 
 
@@ -75,17 +80,18 @@ def mean_lattice(
     h, w = grid.shape
     n_theta, n_pts = rows.shape
     n_off = offsets.size
-    out = np.empty((n_theta, n_off, n_off))
+    out = np.zeros((n_theta, n_off, n_off))
     for k in range(n_theta):
-        for a in range(n_off):
-            for b in range(n_off):
-                s = 0.0
-                for i in range(n_pts):
-                    r = rows[k, i] + offsets[a]
+        for i in range(n_pts):
+            for a in range(n_off):
+                r = rows[k, i] + offsets[a]
+                if r < 0 or r >= h:
+                    continue
+                for b in range(n_off):
                     c = cols[k, i] + offsets[b]
-                    if 0 <= r < h and 0 <= c < w:
-                        s += grid[r, c]
-                out[k, a, b] = s / max(n_pts, 1)
+                    if 0 <= c < w:
+                        out[k, a, b] += grid[r, c]
+    out /= max(n_pts, 1)
     return out
 
 

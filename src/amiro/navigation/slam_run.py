@@ -27,20 +27,25 @@ class SlamOutcome:
 
 def slam_over(
     scans: list[CarmenScan],
-    odoms: list[Pose2D],
-    fov_deg: float = 180.0,
+    odoms: list[Pose2D | None],
+    fov_deg: float | None = None,
     max_range: float = 12.0,
     loop_closure: bool = True,
 ) -> SlamOutcome:
     """Graph SLAM over ``scans`` with ``odoms`` (one per scan) as the odometry."""
     slam = GraphSlam(GraphSlamParams(slam=tracking_params(max_range), loop_closure=loop_closure))
-    fov = math.radians(fov_deg)
+    fov = None if fov_deg is None else math.radians(fov_deg)
     t0 = time.process_time()
     for scan, odom in zip(scans, odoms, strict=True):
         slam.update(scan.ranges, scan.angles(fov), odom)
     slam.finish()
     elapsed = time.process_time() - t0
     return SlamOutcome(slam.trajectory(), slam.map(), elapsed, slam)
+
+
+def odometry(scans: list[CarmenScan]) -> list[Pose2D | None]:
+    """The scans' odometry; None for a log that carries none."""
+    return [s.odom if s.odometry else None for s in scans]
 
 
 def save_map_png(grid: GridMap, path: Path) -> None:
@@ -53,12 +58,12 @@ def save_map_png(grid: GridMap, path: Path) -> None:
 def run_slam(
     log: Path,
     out_dir: Path,
-    fov_deg: float = 180.0,
+    fov_deg: float | None = None,
     max_range: float = 12.0,
     loop_closure: bool = True,
 ) -> dict[str, Any]:
     scans = read_carmen(log)
-    run = slam_over(scans, [s.odom for s in scans], fov_deg, max_range, loop_closure)
+    run = slam_over(scans, odometry(scans), fov_deg, max_range, loop_closure)
     slam, poses = run.slam, run.poses
     out_dir.mkdir(parents=True, exist_ok=True)
     save_map(run.grid, out_dir / "map.yaml")

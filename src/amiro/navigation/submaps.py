@@ -61,11 +61,11 @@ class Submap:
     def finish(self) -> None:
         """Keep only the finest level, cropped to the cells the scans touched."""
         fine = self.levels[0]
-        seen = np.nonzero(fine.logodds)
-        if seen[0].size:
-            r0, r1 = int(seen[0].min()), int(seen[0].max()) + 1
-            c0, c1 = int(seen[1].min()), int(seen[1].max()) + 1
-            fine.crop(r0, r1, c0, c1)
+        touched = fine.logodds != 0.0
+        rows = np.flatnonzero(touched.any(axis=1))
+        if rows.size:
+            cols = np.flatnonzero(touched.any(axis=0))
+            fine.crop(int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1)
         self.levels = [fine]
 
 
@@ -79,6 +79,7 @@ class SubmapFrontEnd:
         self.active: list[Submap] = []
         self._last_odom: Pose2D | None = None
         self._last_insert: Pose2D | None = None
+        self._last_step: Pose2D | None = None  # the last motion, when there is no odometry
         self.refused = 0  # matches refused for straying from the odometry guess
 
     def track(self, px: FloatArray, py: FloatArray, odom: Pose2D | None) -> Pose2D:
@@ -89,13 +90,22 @@ class SubmapFrontEnd:
         p = self.params
         guess = self.pose
         window = None
+        gated = True
         if odom is not None and self._last_odom is not None:
             step = between(self._last_odom, odom)
             guess = compose(self.pose, step)
             window = odometry_window(step, p)
+        elif odom is None:
+            # no odometry: constant velocity, searched over a window wider than the step
+            step = self._last_step or Pose2D()
+            guess = compose(self.pose, step)
+            window = constant_velocity_window(step)
+            gated = False
         self._last_odom = odom
+        before = self.pose
         if not self.active or px.size < 10:
             self.pose = guess
+            self._last_step = between(before, self.pose) if odom is None else None
             return self.pose
         levels = self.active[0].levels
         start = guess
@@ -111,10 +121,11 @@ class SubmapFrontEnd:
             start = correlative_guess(coarse, px, py, guess, window, p.search_sigmas)
         weight = p.odom_weight if odom is not None else 0.0
         matched = match_scan(levels, px, py, start, weight, p.iterations)
-        if window is not None and _sigmas(matched, guess, window) > p.gate_sigmas:
+        if gated and window is not None and _sigmas(matched, guess, window) > p.gate_sigmas:
             self.refused += 1
             matched = guess
         self.pose = matched
+        self._last_step = between(before, self.pose) if odom is None else None
         return self.pose
 
     def should_insert(self) -> bool:
@@ -155,6 +166,14 @@ def odometry_window(step: Pose2D, p: SlamParams) -> SearchWindow:
     bx, mx, rx = p.odom_sigma_xy
     bt, mt, rt = p.odom_sigma_theta
     return SearchWindow(bx + mx * d + rx * turn, bt + mt * d + rt * turn)
+
+
+def constant_velocity_window(step: Pose2D) -> SearchWindow:
+    """One sigma of a constant-velocity prediction's error: a robot without odometry may
+    stop, turn or speed up between two scans (1 m steps, turns up to 40 degrees in the
+    Orebro log)."""
+    d = math.hypot(step.x, step.y)
+    return SearchWindow(0.4 + 0.3 * d, math.radians(15.0) + 0.3 * abs(step.theta))
 
 
 def _sigmas(pose: Pose2D, guess: Pose2D, sigma: SearchWindow) -> float:
