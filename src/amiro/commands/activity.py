@@ -37,12 +37,24 @@ def register(sub: Subcommands) -> None:
     train.add_argument("--hidden", type=int, default=64, help="LSTM and feature width")
     train.add_argument("--per-cell", type=int, default=6, help="windows per subject/view/action")
     train.add_argument("--max-steps", type=int, help="stop after this many optimiser steps")
+    train.add_argument("--stages", type=int, default=3, help="LSTM stages (the paper: 3)")
 
     export = add_command(
         cmds, "export", _export, help="export a training checkpoint to ONNX (needs torch)"
     )
     export.add_argument("checkpoint", type=Path)
     export.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
+
+    calibrate = add_command(
+        cmds,
+        "calibrate",
+        _calibrate,
+        help="pick a model's confidence floor and unknown weight again on the real sets' "
+        "validation subjects (needs onnx)",
+    )
+    calibrate.add_argument("--model", type=Path, help="ONNX model (default: the shipped one)")
+    calibrate.add_argument("--real", type=Path, required=True, help="the real sets' folder")
+    calibrate.add_argument("--out", type=Path, required=True, help="the ONNX file to write")
 
     evaluate = add_command(
         cmds,
@@ -62,6 +74,12 @@ def register(sub: Subcommands) -> None:
         "--all-clips",
         action="store_true",
         help="with --real: score every clip (a model that never trained on these sets)",
+    )
+    evaluate.add_argument(
+        "--validation",
+        action="store_true",
+        help="with --real: score the validation subjects instead of the test ones (to choose "
+        "between trained models without looking at the test data)",
     )
     evaluate.add_argument("--seed", type=int, default=1000)
 
@@ -89,7 +107,7 @@ def _positive(value: int | None, name: str) -> None:
 def _train(args: argparse.Namespace) -> int:
     from amiro.core.config import ConfigError
 
-    for name in ("epochs", "hidden", "per_cell", "max_steps"):
+    for name in ("epochs", "hidden", "per_cell", "max_steps", "stages"):
         _positive(getattr(args, name), "--" + name.replace("_", "-"))
     if args.real is not None and not args.real.is_dir():
         raise ConfigError(f"--real {args.real}: no such folder")
@@ -109,6 +127,7 @@ def _train(args: argparse.Namespace) -> int:
             max_steps=args.max_steps,
             checkpoints=args.checkpoints,
             real=args.real,
+            stages=args.stages,
         )
     )
     if args.json:
@@ -135,6 +154,23 @@ def _export(args: argparse.Namespace) -> int:
     return 0
 
 
+def _calibrate(args: argparse.Namespace) -> int:
+    from amiro.activity.calibrate import calibrate
+    from amiro.core.config import ConfigError
+
+    if not args.real.is_dir():
+        raise ConfigError(f"--real {args.real}: no such folder")
+    report = calibrate(args.model, args.real, args.out)
+    if args.json:
+        emit_json(report)
+    else:
+        print(
+            f"wrote {report['out']}: threshold {report['threshold']}, unknown weight "
+            f"{report['unknown_weight']} (validation score {report['validation_score']})"
+        )
+    return 0
+
+
 def _evaluate(args: argparse.Namespace) -> int:
     from amiro.activity.onnx_model import ActivityModel
     from amiro.evaluation.activity_evaluate import (
@@ -148,7 +184,9 @@ def _evaluate(args: argparse.Namespace) -> int:
     if args.ntu:
         report = evaluate_ntu(model, args.ntu)
     elif args.real:
-        report = evaluate_real_sets(model, args.real, args.all_clips)
+        report = evaluate_real_sets(
+            model, args.real, args.all_clips, scored="validation" if args.validation else "test"
+        )
     else:
         report = evaluate_synthetic(model, args.seed)
     if args.json:
