@@ -25,7 +25,7 @@ FIELDS = [
     ("perception.faces.backend", "dlib, sim"),
     ("perception.camera.detector", "hog, onnx"),
     ("navigation.localization", "amcl, oracle"),
-    ("activity.backend", "camera-onnx, onnx, oracle"),
+    ("activity.backend", "camera-mediapipe, camera-onnx, onnx, oracle"),
     ("dialogue.asr.backend", "google, pocketsphinx, vosk"),
     ("dialogue.tts.backend", "espeak, google, piper"),
     ("dialogue.nlu", "amiro, oracle"),

@@ -77,3 +77,4 @@ def test_evaluate_on_ntu_files_and_bench_give_the_contract_keys(
     report = json.loads(out)
     assert code == 0 and set(report["lengths"]) == {"5", "10", "15", "20", "25", "30", "60"}
     assert report["stream_ms_per_frame"] > 0
+    assert report["pose_ms_per_frame"] > 0 and report["pose_detect_ms_per_frame"] > 0

@@ -3,7 +3,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from amiro.activity.augment import drop_joints, occlude
+from amiro.activity.augment import drop_joints, occlude, time_warp
 from amiro.activity.bench import run_bench
 from amiro.activity.dataset import subject_body, window
 from amiro.activity.labels import ACTIONS
@@ -41,6 +41,18 @@ def test_augmentation_hides_joints_as_asked() -> None:
     dropped = drop_joints(frames, 0.3, rng)
     assert (~visible(dropped)).sum(axis=1).tolist() == [8] * len(frames)
     assert np.isnan(occlude(frames, rng)).any()
+
+
+def test_time_warp_plays_the_motion_faster_or_slower() -> None:
+    rng = np.random.default_rng(3)
+    frames = window("hand_waving", subject_body(3, 0), 0.0, rng)  # 40 frames
+    same = time_warp(frames, 40, 1.0, rng)
+    np.testing.assert_allclose(same, frames)
+    fast = time_warp(frames, 20, 2.0, rng)  # 40 source frames in 20: every other one
+    np.testing.assert_allclose(fast[[0, -1]], frames[[0, -1]])
+    slow = time_warp(frames[:10], 19, 0.5, rng)  # 9 intervals in 18: midpoints between
+    np.testing.assert_allclose(slow[1], (frames[0] + frames[1]) / 2)
+    assert time_warp(frames, 16, 1.4, rng).shape == (16, 25, 3)
 
 
 def test_bench_reports_every_length(tiny_model: ActivityModel) -> None:

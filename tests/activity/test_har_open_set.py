@@ -12,7 +12,7 @@ from amiro.activity.dataset import subject_body, window
 from amiro.activity.labels import ACTIONS, NTU_ACTION_IDS, UNKNOWN
 from amiro.activity.ntu import Body, SkeletonSequence, write_skeleton_file
 from amiro.activity.onnx_model import ActivityModel
-from amiro.activity.open_set import choose_threshold, clip_windows
+from amiro.activity.open_set import choose_decision, clip_windows
 from amiro.activity.real_sets import Clip
 from amiro.activity.recognizer import SkeletonActivityRecognizer
 from amiro.activity.skeleton import J
@@ -40,8 +40,23 @@ def test_the_threshold_balances_known_accuracy_and_unknown_rejection() -> None:
     probs[0, 0] = probs[1, 1] = 0.9  # confident and right
     probs[2, 0] = probs[3, 2] = 0.55  # unsure guesses on other actions
     labels = np.array([0, 1, unknown, unknown])
-    floor = choose_threshold(probs, labels, unknown)
-    assert 0.55 < floor <= 0.9
+    floor, weight, _ = choose_decision(probs, labels, probs, unknown)
+    assert 0.55 < floor <= 0.9 and weight == 1.0
+
+
+def test_a_hidden_body_is_not_taken_for_something_else() -> None:
+    """With joints hidden the model leans to ``unknown`` on known actions: the validated
+    rule weighs ``unknown`` down only as far as the unknown windows stay rejected."""
+    unknown = CLASSES.index(UNKNOWN)
+    probs = np.full((4, len(CLASSES)), 0.01)
+    probs[0, 0] = probs[1, 1] = 0.9
+    probs[2, unknown] = probs[3, unknown] = 0.9
+    hidden = probs.copy()
+    hidden[0, 0], hidden[0, unknown] = 0.45, 0.5  # known, hidden joints: unsure, "unknown"
+    labels = np.array([0, 1, unknown, unknown])
+    floor, weight, score = choose_decision(probs, labels, hidden, unknown)
+    assert weight < 0.9 and floor <= 0.45 and score == 1.0
+    assert choose_decision(probs, labels, probs, unknown)[1] == 1.0
 
 
 def test_unknown_or_unsure_is_no_activity(tiny_open_set_model: ActivityModel) -> None:
@@ -131,3 +146,20 @@ def test_evaluate_on_ntu_files_of_any_action_gives_the_open_set_contract_keys(
         assert report[key] >= 0.0
     assert report["confusion"]["labels"][-1] == UNKNOWN
     assert sum(map(sum, report["confusion"]["matrix"])) == 3
+
+
+def test_a_rewritten_decision_rule_changes_the_decisions_not_the_network(
+    tiny_open_set_model: ActivityModel, tmp_path: Path
+) -> None:
+    from amiro.activity.calibrate import write_decision
+
+    out = tmp_path / "calibrated.onnx"
+    write_decision(tiny_open_set_model.path, out, 0.35, 0.5)
+    model = ActivityModel(out)
+    assert (model.info.threshold, model.info.unknown_weight) == (0.35, 0.5)
+    window = np.random.default_rng(0).normal(0.0, 0.3, (30, 25, 3)) + np.array([0.0, 1.0, 3.0])
+    np.testing.assert_allclose(model.classify(window), tiny_open_set_model.classify(window))
+    probs = np.zeros(len(CLASSES))
+    probs[CLASSES.index(UNKNOWN)], probs[0] = 0.5, 0.4  # unknown, unless weighed down
+    assert tiny_open_set_model.decide(probs, threshold=0.35)[0] is None
+    assert model.decide(probs) == (ACTIONS[0], pytest.approx(0.4))

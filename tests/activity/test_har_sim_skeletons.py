@@ -8,7 +8,7 @@ import numpy as np
 from amiro.activity.skeleton import NUM_JOINTS, J, visible
 from amiro.core.clock import SimClock
 from amiro.core.runtime import Runtime
-from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig
+from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig, SkeletonsSection
 from amiro.sim.simulator import Simulation, build_sim
 from amiro.sim.skeletons import OCCLUSION_VISIBLE, SkeletonCamera
 
@@ -22,7 +22,8 @@ def _scene(distance: float, **resident: Any) -> tuple[Runtime, Simulation, Skele
         pose=PoseSpec(x=PERSON_X, y=2.0, theta=math.pi),
         **resident,
     )
-    cfg = SimConfig(start=PoseSpec(x=PERSON_X - distance, y=2.0), residents=[spec])
+    ideal = SkeletonsSection(noise_m=0.0, dropout=0.0, pitch_deg=0.0)  # the geometry alone
+    cfg = SimConfig(start=PoseSpec(x=PERSON_X - distance, y=2.0), residents=[spec], skeletons=ideal)
     sim = build_sim(runtime, cfg)
     runtime.start()
     runtime.spin_for(0.5)

@@ -46,10 +46,41 @@ def test_paper_formula_as_written() -> None:
     u, v, d = np.array([160.0]), np.array([360.0]), np.array([3.0])
     alpha = geom.hfov * (320 - 160) / 320  # the full field of view, "the maximum angle"
     beta = geom.vfov * (360 - 240) / 240
-    ((x, y, z),) = paper_formula(geom, u, v, d, views)
+    ((x, y, z),) = paper_formula(geom, u, v, d, views, fov="full")
     assert x == pytest.approx(3.0 * math.cos(alpha + 0.2))
     assert y == pytest.approx(3.0 * math.sin(alpha + 0.2))
     assert z == pytest.approx(geom.mount_height - 3.0 * math.sin(beta + 0.1))
+
+
+def test_paper_formula_read_with_edge_angles_is_geometrically_consistent() -> None:
+    """Read as the angle at the image edge (half the field of view), a pixel on the border
+    gets its ray's true angle, and a point on the image's middle row is placed where it is
+    (up to the linear-angle approximation inside the image); the full-field reading
+    doubles every angle."""
+    cam = Camera()
+    geom = geometry(cam)
+    views = Views.single(0.0, 0.0, 0.0, 0.0, 0.0, 1)
+    ray = math.atan((geom.width / 2.0) / geom.fx)  # the border pixel's true angle
+    assert ray == pytest.approx(geom.hfov / 2.0)
+    d = np.array([3.0])
+    ((x, y, _),) = paper_formula(geom, np.array([0.0]), np.array([240.0]), d, views)
+    assert math.atan2(y, x) == pytest.approx(ray)
+    ((_, y_full, _),) = paper_formula(
+        geom, np.array([0.0]), np.array([240.0]), d, views, fov="full"
+    )
+    assert y_full == pytest.approx(3.0 * math.sin(2.0 * ray))
+    # A point 3 m away, 0.6 m to the left, at the camera's height: projected, then placed.
+    point = np.array([[3.0 + cam.params.forward, 0.6, cam.params.height]])
+    pose = Pose2D(0.0, 0.0, 0.0)
+    optical = cam.to_optical(point, pose, 0.0, 0.0)
+    (u, v), rng = cam.project(optical)[0], float(np.linalg.norm(optical[0]))
+    uvd = np.array([u]), np.array([v]), np.array([rng])
+    ((x, y, z),) = paper_formula(geom, *uvd, views)
+    assert abs(y - 0.6) < 0.1 and abs(z - cam.params.height) < 0.01  # 4 cm: linear angles
+    ((_, y_full, _),) = paper_formula(geom, *uvd, views, fov="full")
+    assert abs(y_full - 0.6) > 0.4
+    with pytest.raises(ValueError):
+        paper_formula(geom, d, d, d, views, fov="quarter")
 
 
 def test_surface_offset_moves_along_the_ray() -> None:

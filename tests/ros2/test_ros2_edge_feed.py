@@ -42,7 +42,13 @@ def _scene(activity: str = "idle") -> tuple[Runtime, Simulation, SkeletonCamera,
     sim = build_sim(runtime, cfg)
     skeletons = SkeletonCamera(sim, np.random.default_rng(0))
     runtime.add(HeadSensorsPublisher(sim, skeletons))
-    feed = HeadSensorsFeed(runtime.bus, sim.camera_mount(), sim.household(), sim.robot_pose)
+    feed = HeadSensorsFeed(
+        runtime.bus,
+        sim.camera_mount(),
+        sim.household(),
+        sim.robot_pose,
+        cfg.skeletons.pitch_deg,
+    )
     runtime.start()
     return runtime, sim, skeletons, feed
 

@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from amiro.scenarios.hydration import HydrationOptions, run_hydration
+from amiro.scenarios.hydration import HydrationOptions, run_hydration, scenario_config
 
 STEPS_DEFAULT = ["Search", "MoveTo", "Say", "Listen", "RecognizeActivity", "NotifyEnvironment"]
 
@@ -35,6 +35,15 @@ def test_default_run_completes_with_the_papers_steps(default_report: dict[str, A
     assert [a["status"] for a in rep["acks"]] == ["done"]
     assert rep["collisions"] == 0
     assert rep["sim_time_s"] > 0 and rep["wall_time_s"] > 0
+
+
+def test_the_model_sees_the_drinking_through_a_noisy_pitched_sensor(
+    default_report: dict[str, Any],
+) -> None:
+    sensor = scenario_config(HydrationOptions(seed=1)).sim.skeletons
+    assert sensor.noise_m >= 0.01 and sensor.dropout > 0 and sensor.pitch_deg >= 10
+    (watch,) = [s for s in default_report["steps"] if s["task"] == "RecognizeActivity"]
+    assert watch["result"] == "success" and watch["detail"]["activity"] == "drink_water"
 
 
 def test_default_run_events_explain_what_happened(default_report: dict[str, Any]) -> None:

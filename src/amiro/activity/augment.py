@@ -74,13 +74,28 @@ def occlude(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
 def augment(frames: FloatArray, rng: np.random.Generator) -> FloatArray:
     """A random mix: untouched, fixed dropout, flicker or a region occluded."""
     pick = rng.random()
-    if pick < 0.3:
+    if pick < 0.2:
         return frames
-    if pick < 0.65:
+    if pick < 0.6:
         return drop_joints(frames, rng.uniform(0.05, 0.55), rng)
-    if pick < 0.8:
+    if pick < 0.75:
         return flicker(frames, rng.uniform(0.05, 0.4), rng)
     return occlude(frames, rng)
+
+
+def time_warp(
+    frames: FloatArray, length: int, speed: float, rng: np.random.Generator
+) -> FloatArray:
+    """``length`` frames of the motion played ``speed`` times as fast: a random stretch of
+    ``length * speed`` source frames (as many as there are at most), linearly resampled.
+    Real sets record at other rates and people move at their own pace."""
+    span = int(np.clip(round(length * speed), 2, len(frames)))
+    start = int(rng.integers(0, len(frames) - span + 1))
+    t = start + np.linspace(0.0, span - 1.0, length)
+    i0 = np.minimum(np.floor(t).astype(int), len(frames) - 2)
+    share = (t - i0)[:, None, None]
+    out: FloatArray = (1.0 - share) * frames[i0] + share * frames[i0 + 1]
+    return out
 
 
 # The joints a Kinect v1 never gives (see kinect_v1.py): real training data lacks them, so

@@ -15,3 +15,9 @@ from amiro.core.registry import register
 register("activity", "onnx", "amiro.activity.stack:onnx_recognizer")
 register("activity", "oracle", "amiro.sim.activity_oracle:oracle_recognizer")
 register("activity", "camera-onnx", "amiro.activity.stack:camera_onnx_recognizer", extra="vision")
+register(
+    "activity",
+    "camera-mediapipe",
+    "amiro.activity.stack:camera_mediapipe_recognizer",
+    extra="pose",
+)

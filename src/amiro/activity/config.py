@@ -13,11 +13,14 @@ from amiro.core.registry import backend_name
 
 
 class PoseSection(Section):
-    """The ``camera-onnx`` backend's 2D pose estimator (see docs/activity.md for the layout)."""
+    """The camera backends' 2D pose estimator: ``camera-onnx`` runs ``model`` (layout in
+    docs/activity.md), ``camera-mediapipe`` the BlazePose model ``amiro[pose]`` ships."""
 
-    model: Path | None = Field(default=None, description="a YOLO-pose-layout ONNX model")
+    model: Path | None = Field(
+        default=None, description="camera-onnx: a YOLO-pose-layout ONNX model"
+    )
     keypoints: Literal["coco17", "openpose_body25", "mediapipe_blazepose33"] = Field(
-        default="coco17", description="the model's keypoint order"
+        default="coco17", description="camera-onnx: the model's keypoint order"
     )
     min_score: float = Field(default=0.5, ge=0.0, le=1.0, description="person score kept")
     min_keypoint: float = Field(default=0.3, ge=0.0, le=1.0, description="keypoint confidence")
@@ -28,7 +31,8 @@ class ActivityConfig(Section):
     backend: Annotated[str, backend_name("activity")] = Field(
         default="onnx",
         description="onnx: the model on simulated skeletons; oracle: ground truth; "
-        "camera-onnx: the model on skeletons a pose model finds in the robot's camera",
+        "camera-mediapipe: the model on skeletons MediaPipe BlazePose (amiro[pose]) finds "
+        "in the robot's camera; camera-onnx: the same with a user-supplied ONNX pose model",
     )
     model: Path | None = Field(default=None, description="ONNX model; default: the shipped one")
     window_frames: int = Field(default=30, ge=2, le=300, description="frames per decision")

@@ -45,6 +45,9 @@ class ModelInfo:
     features: int
     box_height_fraction: tuple[float, float]
     threshold: float = DEFAULT_THRESHOLD
+    # ``unknown``'s probability is scaled by this before the argmax (chosen on validation
+    # data with joints missing: a partly hidden body otherwise reads as "something else").
+    unknown_weight: float = 1.0
 
 
 class ActivityModel:
@@ -77,6 +80,7 @@ class ActivityModel:
             int(meta["features"]),
             (float(meta["box_height_fraction"][0]), float(meta["box_height_fraction"][1])),
             float(meta.get("threshold", DEFAULT_THRESHOLD)),
+            float(meta.get("unknown_weight", 1.0)),
         )
 
     @property
@@ -91,8 +95,13 @@ class ActivityModel:
 
     def decide(self, probs: np.ndarray, threshold: float | None = None) -> tuple[str | None, float]:
         """The activity of one probability vector and its confidence; None when the
-        model says ``unknown`` or is less sure than ``threshold`` (default: the model's)."""
-        best = int(np.argmax(probs))
+        model says ``unknown`` (its probability weighed by ``unknown_weight``) or is less
+        sure than ``threshold`` (default: the model's)."""
+        weighed = probs
+        if UNKNOWN in self.info.classes and self.info.unknown_weight != 1.0:
+            weighed = probs.copy()
+            weighed[self.info.classes.index(UNKNOWN)] *= self.info.unknown_weight
+        best = int(np.argmax(weighed))
         confidence = float(probs[best])
         label = self.outcomes[best]
         floor = self.info.threshold if threshold is None else threshold

@@ -19,6 +19,7 @@ from amiro.robot.camera import HeadCamera
 
 if TYPE_CHECKING:  # these load onnxruntime: only when their backend is chosen
     from amiro.activity.camera_skeletons import BoxPlacer, PersonLocator
+    from amiro.activity.pose import PoseEstimator
     from amiro.activity.recognizer import SkeletonSource
     from amiro.core.runtime import Runtime
     from amiro.robot.camera_feed import CameraFeed
@@ -68,29 +69,48 @@ def onnx_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
 
 
 def camera_onnx_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
-    """The activity model on skeletons the configured pose model finds in the camera."""
-    from amiro.activity.camera_skeletons import CameraSkeletonSource
-    from amiro.activity.onnx_model import ActivityModel
+    """The activity model on skeletons the configured ONNX pose model finds in the camera."""
     from amiro.activity.pose import PoseOnnxEstimator
-    from amiro.activity.recognizer import SkeletonActivityRecognizer
 
-    cfg, camera = inputs.cfg, inputs.camera
-    if camera is None:
-        raise ConfigError(
-            "activity.backend: camera-onnx reads a real robot's camera (robot.adapter: ros2); "
-            "on the simulator use onnx"
-        )
-    pose = cfg.pose
+    pose = inputs.cfg.pose
+    _real_camera(inputs)
     if pose.model is None:
         raise ConfigError("activity.pose.model: camera-onnx needs a pose model (ONNX file)")
-    model = ActivityModel(cfg.model)
     estimator = PoseOnnxEstimator(pose.model, pose.keypoints, pose.min_score, pose.nms_iou)
+    return _camera_recognizer(inputs, estimator)
+
+
+def camera_mediapipe_recognizer(inputs: ActivityInputs) -> ActivityRecognizer:
+    """The activity model on skeletons MediaPipe BlazePose (shipped in ``amiro[pose]``)
+    finds in the camera: one person per image, tracked from frame to frame."""
+    from amiro.activity.mediapipe_pose import MediaPipePoseEstimator
+
+    _real_camera(inputs)
+    return _camera_recognizer(inputs, MediaPipePoseEstimator(inputs.cfg.pose.min_score))
+
+
+def _real_camera(inputs: ActivityInputs) -> CameraSkeletons:
+    if inputs.camera is None:
+        raise ConfigError(
+            f"activity.backend: {inputs.cfg.backend} reads a real robot's camera "
+            "(robot.adapter: ros2); on the simulator use onnx"
+        )
+    return inputs.camera
+
+
+def _camera_recognizer(inputs: ActivityInputs, estimator: PoseEstimator) -> ActivityRecognizer:
+    from amiro.activity.camera_skeletons import CameraSkeletonSource
+    from amiro.activity.onnx_model import ActivityModel
+    from amiro.activity.recognizer import SkeletonActivityRecognizer
+
+    cfg, camera = inputs.cfg, _real_camera(inputs)
+    model = ActivityModel(cfg.model)
     source = camera.runtime.add(
         CameraSkeletonSource(
             camera.feed,
             estimator,
             model.info.fps,  # the rate the activity model was trained at
-            pose.min_keypoint,
+            cfg.pose.min_keypoint,
             locate=camera.locate,
             place=camera.place,
         )

@@ -21,14 +21,14 @@ import torch
 from torch import nn
 from tqdm import tqdm
 
-from amiro.activity.augment import augment_real, augment_synthetic
+from amiro.activity.augment import augment_real, augment_synthetic, time_warp
 from amiro.activity.dataset import TRAIN_CAMERAS_DEG, TRAIN_SUBJECTS, WINDOW, generate
 from amiro.activity.labels import ACTIONS, UNKNOWN
 from amiro.activity.model import LastFrameProbabilities, MultiStageLSTM
 from amiro.activity.motion import FPS
 from amiro.activity.normalize import FEATURES_PER_FRAME, preprocess_batch
 from amiro.activity.onnx_model import BOX_HEIGHT_RANGE, DEFAULT_THRESHOLD, METADATA_KEY
-from amiro.activity.open_set import choose_threshold, clip_windows
+from amiro.activity.open_set import choose_decision, clip_windows, hide_joints
 from amiro.activity.real_sets import Clip, load, role
 
 REAL_STRIDE = 10  # frames between real training windows
@@ -49,6 +49,8 @@ class TrainConfig:
     progress: bool = True
     checkpoints: Path | None = None  # default: a checkpoints/ folder beside ``out``
     real: Path | None = None  # the real skeleton sets (kard/, florence3d/, cad60/, citi/)
+    stages: int = 3  # the paper's three
+    speed: tuple[float, float] = (0.7, 1.4)  # time-warp range of the training windows
 
 
 @dataclass
@@ -62,13 +64,18 @@ class _Data:
 
 
 def _batch(
-    frames: np.ndarray, real: np.ndarray, rng: np.random.Generator, min_length: int
+    frames: np.ndarray,
+    real: np.ndarray,
+    rng: np.random.Generator,
+    min_length: int,
+    speed: tuple[float, float],
 ) -> torch.Tensor:
     length = int(rng.integers(min_length, WINDOW + 1))
-    start = int(rng.integers(0, WINDOW - length + 1))
     cropped = np.stack(
         [
-            (augment_real if r else augment_synthetic)(f[start : start + length], rng)
+            (augment_real if r else augment_synthetic)(
+                time_warp(f, length, rng.uniform(*speed), rng), rng
+            )
             for f, r in zip(frames, real, strict=True)
         ]
     )
@@ -123,7 +130,7 @@ def train(cfg: TrainConfig) -> dict[str, object]:
     # drove the validated threshold to 0.85.)
     inverse = 1.0 / np.sqrt(np.maximum(counts, 1.0))
     weights = torch.tensor(inverse / inverse.mean(), dtype=torch.float32)
-    model = MultiStageLSTM(FEATURES_PER_FRAME, len(classes), cfg.hidden)
+    model = MultiStageLSTM(FEATURES_PER_FRAME, len(classes), cfg.hidden, cfg.stages)
     optim = torch.optim.Adam(model.parameters(), lr=cfg.lr)
     per_epoch = int(np.ceil(len(data) / cfg.batch))
     sched = torch.optim.lr_scheduler.OneCycleLR(
@@ -138,7 +145,7 @@ def train(cfg: TrainConfig) -> dict[str, object]:
         order = rng.permutation(len(data))
         for i in range(per_epoch):
             idx = order[i * cfg.batch : (i + 1) * cfg.batch]
-            x = _batch(data.frames[idx], data.real[idx], rng, cfg.min_length)
+            x = _batch(data.frames[idx], data.real[idx], rng, cfg.min_length, cfg.speed)
             h0, c0 = model.initial_state(len(idx))
             logits, _, _ = model(x, h0, c0)
             loss = _loss(logits, labels[idx], weights)
@@ -160,11 +167,16 @@ def train(cfg: TrainConfig) -> dict[str, object]:
         if cfg.max_steps is not None and step >= cfg.max_steps:
             break
     bar.close()
-    threshold = DEFAULT_THRESHOLD
+    threshold, unknown_weight = DEFAULT_THRESHOLD, 1.0
     if validation:
         frames, vlabels = clip_windows(validation, classes, VALIDATION_FRAMES, REAL_STRIDE)
-        threshold = choose_threshold(_probabilities(model, frames), vlabels, classes.index(UNKNOWN))
-    export(model, cfg.out, cfg.hidden, classes, threshold)
+        threshold, unknown_weight, _ = choose_decision(
+            _probabilities(model, frames),
+            vlabels,
+            _probabilities(model, hide_joints(frames, cfg.seed)),
+            classes.index(UNKNOWN),
+        )
+    export(model, cfg.out, cfg.hidden, classes, threshold, unknown_weight)
     return {
         "out": str(cfg.out),
         "steps": step,
@@ -173,6 +185,7 @@ def train(cfg: TrainConfig) -> dict[str, object]:
         "real_samples": int(data.real.sum()),
         "classes": list(classes),
         "threshold": threshold,
+        "unknown_weight": unknown_weight,
     }
 
 
@@ -194,6 +207,7 @@ def export(
     hidden: int,
     classes: tuple[str, ...] = ACTIONS,
     threshold: float = DEFAULT_THRESHOLD,
+    unknown_weight: float = 1.0,
 ) -> None:
     """The ONNX graph (window or one frame, with states) and its metadata."""
     import onnx
@@ -224,6 +238,7 @@ def export(
     meta = {
         "classes": list(classes),
         "threshold": threshold,
+        "unknown_weight": unknown_weight,
         "fps": FPS,
         "hidden": hidden,
         "stages": len(model.stages),
@@ -240,8 +255,9 @@ def export_checkpoint(checkpoint: Path, out: Path) -> dict[str, object]:
     state = torch.load(checkpoint, map_location="cpu", weights_only=True)["model"]
     hidden = int(state["stages.0.lstm.weight_hh_l0"].shape[1])
     outputs = int(state["stages.0.head.weight"].shape[0])
+    stages = len({key.split(".")[1] for key in state if key.startswith("stages.")})
     classes = ACTIONS if outputs == len(ACTIONS) else (*ACTIONS, UNKNOWN)
-    model = MultiStageLSTM(FEATURES_PER_FRAME, len(classes), hidden)
+    model = MultiStageLSTM(FEATURES_PER_FRAME, len(classes), hidden, stages)
     model.load_state_dict(state)
     export(model, out, hidden, classes)
     return {"out": str(out), "checkpoint": str(checkpoint), "hidden": hidden}

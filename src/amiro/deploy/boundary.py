@@ -38,6 +38,7 @@ from amiro.sim.skeletons import (
     from_level,
     in_image,
     last_frames,
+    sensor_tilt,
     to_level,
 )
 
@@ -129,8 +130,12 @@ class HeadSensorsFeed:
         mount: tuple[float, float],
         household: tuple[str, ...],
         localization: PoseSource,
+        tilt_deg: float = 0.0,
     ):
+        """``tilt_deg``: the skeleton sensor's uncorrected pitch (``sim.skeletons.pitch_deg``),
+        applied to the levelled skeletons the robot sends, as its skeleton camera does."""
         self.mount = mount
+        self.tilt_deg = tilt_deg
         self.camera = Camera(CameraParams(height=mount[0], forward=mount[1]))
         self.residents = household
         self.localization = localization
@@ -228,7 +233,7 @@ class HeadSensorsFeed:
         seen &= ~np.isnan(placed).any(axis=2)
         level = to_level(self.camera, placed, pose, joints[0])
         level[~seen] = np.nan
-        return level
+        return sensor_tilt(level, self.tilt_deg)
 
     def framing(self, person: str) -> tuple[float, bool] | None:
         if self.info is None:

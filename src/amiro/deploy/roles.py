@@ -128,6 +128,7 @@ def build_edge_role(
         (cfg.sim.camera.height, CameraParams().forward),
         tuple(p.name for p in cfg.people()),
         lambda: navigation.pose,
+        cfg.sim.skeletons.pitch_deg,
     )
     senses = build_senses(runtime, cfg, feed, lambda _rng: feed, feed.robot_pose)
     tracker = finder_tracker(senses.perception)

@@ -198,7 +198,11 @@ def evaluate_ntu(model: ActivityModel, folder: Path, seed: int = 1000) -> dict[s
 
 
 def evaluate_real_sets(
-    model: ActivityModel, root: Path, all_clips: bool = False, progress: bool = True
+    model: ActivityModel,
+    root: Path,
+    all_clips: bool = False,
+    progress: bool = True,
+    scored: str = "test",
 ) -> dict[str, Any]:
     """The real Kinect v1 sets under ``root``: held-out subjects and the held-out set (or
     every clip, for a model that never saw real data), beside Table 15's protocols."""
@@ -206,15 +210,15 @@ def evaluate_real_sets(
     if not root.is_dir():
         raise ConfigError(f"{root}: no such folder")
     clips = load(root, progress=progress)
-    report = evaluate_real(model, clips, not all_clips, progress)
+    report = evaluate_real(model, clips, not all_clips, progress, scored)
     decide = decider(model)
     report["simulated_falls"] = simulated_falls(decide)
     # 30 % of the joints hidden (the same ones over a whole clip) on the scored clips
     rng = np.random.default_rng(MISSING_SEED)
-    scored = [c for c in clips if all_clips or role(c) == "test"]
-    hidden = [drop_joints(c.frames, 0.3, rng) for c in scored]
+    kept = [c for c in clips if all_clips or role(c) == scored]
+    hidden = [drop_joints(c.frames, 0.3, rng) for c in kept]
     report["missing_joints_0.3"] = open_set_scores(
-        [c.label for c in scored], clip_outcomes_of(decide, hidden)
+        [c.label for c in kept], clip_outcomes_of(decide, hidden)
     )["known_accuracy"]
     report["paper_table15"] = PAPER_ROWS
     report["targets"] = REAL_TARGETS

@@ -188,19 +188,34 @@ PROTOCOLS = {
 
 
 def evaluate_real(
-    model: ActivityModel, clips: Sequence[Clip], held_out_only: bool = True, progress: bool = False
+    model: ActivityModel,
+    clips: Sequence[Clip],
+    held_out_only: bool = True,
+    progress: bool = False,
+    scored: str = "test",
 ) -> dict[str, Any]:
-    """Per set: the open-set scores of its held-out clips (or all clips, for a model that
-    never saw real data) and the false fall alerts on them stitched into streams."""
+    """Per set: the open-set scores of its held-out clips (``scored``: the test subjects,
+    or the validation ones to choose between models; every clip for a model that never
+    saw real data) and the false fall alerts on them stitched into streams."""
     decide = decider(model)
-    report: dict[str, Any] = {"data": "real", "held_out_only": held_out_only, "sets": {}}
-    tested = [c for c in clips if not held_out_only or role(c) == "test"]
+    report: dict[str, Any] = {
+        "data": "real",
+        "held_out_only": held_out_only,
+        "scored": scored if held_out_only else "all",
+        "sets": {},
+    }
+    tested = [c for c in clips if not held_out_only or role(c) == scored]
     for name in sorted({c.dataset for c in tested}):
         part = [c for c in tested if c.dataset == name]
         if progress:
             print(f"scoring {len(part)} {name} clips", file=sys.stderr)
         scores = open_set_scores([c.label for c in part], clip_outcomes(decide, part))
-        scores["protocol"] = PROTOCOLS[name] if held_out_only else f"all of {name}"
+        if not held_out_only:
+            scores["protocol"] = f"all of {name}"
+        elif scored == "test":
+            scores["protocol"] = PROTOCOLS[name]
+        else:
+            scores["protocol"] = f"validation subjects of {name} (for choosing a model)"
         report["sets"][name] = scores
     report["fall_alerts"] = fall_alerts_per_hour(decide, real_streams(tested), progress)
     return report

@@ -78,15 +78,25 @@ def base_to_map(points: FloatArray, views: Views) -> FloatArray:
 
 
 def paper_formula(
-    geom: CameraGeometry, u: FloatArray, v: FloatArray, d: FloatArray, views: Views
+    geom: CameraGeometry,
+    u: FloatArray,
+    v: FloatArray,
+    d: FloatArray,
+    views: Views,
+    fov: str = "half",
 ) -> FloatArray:
-    """Section 3.3 exactly as written: linear angles from the field of view (``hfov`` and
-    ``vfov`` are the camera's full fields of view, "the maximum angles"), ``d`` the depth
-    reading at the detection.  The result is relative to the robot; it is put in the map
-    frame with the robot's pose, and z (the drop below the camera, as pitch and beta grow
-    downwards) is turned into a height above the floor."""
-    alpha = geom.hfov * ((geom.width / 2.0 - u) / (geom.width / 2.0))
-    beta = geom.vfov * ((v - geom.height / 2.0) / (geom.height / 2.0))
+    """Section 3.3's formulas: linear angles from the field of view, ``d`` the depth reading
+    at the detection.  The paper calls ``hfov``/``vfov`` "the maximum angles": read as the
+    angle at the image edge (``fov="half"``, half the field of view, the default), a pixel
+    at the border gets the angle its ray really has; read as the full field of view
+    (``fov="full"``), every angle comes out doubled.  The result is relative to the robot;
+    it is put in the map frame with the robot's pose, and z (the drop below the camera, as
+    pitch and beta grow downwards) is turned into a height above the floor."""
+    if fov not in ("half", "full"):
+        raise ValueError(f"fov must be 'half' or 'full', not {fov!r}")
+    share = 0.5 if fov == "half" else 1.0
+    alpha = share * geom.hfov * ((geom.width / 2.0 - u) / (geom.width / 2.0))
+    beta = share * geom.vfov * ((v - geom.height / 2.0) / (geom.height / 2.0))
     x = d * np.cos(alpha + views.head_yaw)
     y = d * np.sin(alpha + views.head_yaw)
     z = d * np.sin(beta + views.head_pitch)

@@ -19,7 +19,10 @@ def print_report(report: dict[str, Any]) -> None:
     print(
         f"{report['samples']} samples, {report['localised']} localised ({report['wall_time_s']} s)"
     )
-    print("MAE x y z (m): paper's table | paper formula here | improved here")
+    print(
+        "MAE x y z (m): paper's table | paper formula here (hfov/vfov at the image edge) | "
+        "improved here"
+    )
     rows = [("overall", report["paper_table"], report["paper_formula"], report["improved"])]
     for group in ("by_distance", "by_posture", "by_camera"):
         for name, g in report[group].items():
@@ -31,8 +34,10 @@ def print_report(report: dict[str, Any]) -> None:
             f"  {label:<26} {_axes(table, 'mae')} | {_axes(formula, 'mae')} | "
             f"{_axes(better, 'mae')}"
         )
+    full = report["paper_formula_full_fov"]
+    print(f"  {'overall, full-field reading':<26} {'':17} | {_axes(full, 'mae')} |")
     c = report["counting_mae"]
-    print("counting MAE: ours (paper)")
+    print(f"counting MAE: here (paper); {c['what']}")
     print(
         f"  overall {c['overall']:.2f} ({c['paper']['overall']:.2f}), excluding lying "
         f"{c['excluding_lying']:.2f} ({c['paper']['excluding_lying']:.2f})"
@@ -63,7 +68,7 @@ def plot_by_distance(report: dict[str, Any], path: Path) -> Path:
     for ax, axis in zip(axes, "xyz", strict=True):
         for key, label, style in (
             ("paper_table", "paper (Table 8)", "k--"),
-            ("paper_formula", "paper formula, here", "C1-o"),
+            ("paper_formula", "paper formula (edge angles), here", "C1-o"),
             ("improved", "improved, here", "C0-o"),
         ):
             ax.plot(

@@ -56,6 +56,31 @@ class CameraSection(Section):
     head_speed: float = Field(default=1.5, gt=0.0)
 
 
+class SkeletonsSection(Section):
+    """What the head camera's skeleton stream makes of the residents: a real sensor's
+    noise, lost joints and an uncorrected tilt, and optionally real recorded motion
+    instead of the synthetic generator the activity model was trained on."""
+
+    noise_m: float = Field(
+        default=0.02, ge=0.0, description="joint jitter, standard deviation (Kinect v1: 1-3 cm)"
+    )
+    dropout: float = Field(
+        default=0.05, ge=0.0, lt=1.0, description="share of joints lost in each frame"
+    )
+    pitch_deg: float = Field(
+        default=15.0,
+        ge=-45.0,
+        le=45.0,
+        description="skeletons come in a camera frame pitched down this much (a tilt nobody "
+        "corrected: a sensor on a shelf, an uncalibrated head)",
+    )
+    replay: Path | None = Field(
+        default=None,
+        description="a folder of real skeleton files (NTU .skeleton, or the KARD, Florence "
+        "3D, CAD-60, CITI sets) whose motion the residents replay; None: synthetic motion",
+    )
+
+
 class ReplySpec(Section):
     reply: Literal["confirm", "deny", "postpone", "silence"] = "confirm"
     delay: float = Field(default=2.0, ge=0.0)
@@ -102,6 +127,7 @@ class SimConfig(Section):
     odometry: OdometrySection = Field(default_factory=OdometrySection)
     lidar: LidarSection = Field(default_factory=LidarSection)
     camera: CameraSection = Field(default_factory=CameraSection)
+    skeletons: SkeletonsSection = Field(default_factory=SkeletonsSection)
     residents: list[ResidentSpec] = Field(default_factory=list)
     doors: dict[str, bool] = Field(default_factory=dict)
     obstacles: list[ObstacleSpec] = Field(default_factory=list)

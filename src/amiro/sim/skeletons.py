@@ -1,10 +1,14 @@
 """The residents' skeleton streams, as a pose estimator on Pepper's head camera gives them.
 
-Each resident performs clips of their current activity (synthetic motion from
-:mod:`amiro.activity.motion`) at the model's frame rate.  The head camera sees the joints
-that project inside its image; coordinates are reported in a levelled camera frame
-(Kinect axes: x left, y up, z forward), the head's pitch undone from its joint angle.
-Frames are generated lazily, when someone asks, up to the current simulated time.
+Each resident performs clips of their current activity at the model's frame rate:
+synthetic motion from :mod:`amiro.activity.motion`, or real recorded motion
+(``sim.skeletons.replay``, :mod:`amiro.activity.replay`) for the activities it has.  The
+head camera sees the joints that project inside its image; coordinates are reported in
+Kinect axes (x left, y up, z forward), the head's pitch undone from its joint angle.  Like a
+real sensor (``sim.skeletons``, on by default) the stream jitters, loses joints, and comes
+in a frame tilted by a pitch nobody corrected, so the recogniser's own view normalisation
+has to level it.  Frames are generated lazily, when someone asks, up to the current
+simulated time.
 """
 
 from __future__ import annotations
@@ -17,10 +21,13 @@ import numpy as np
 import numpy.typing as npt
 
 from amiro.activity.labels import IDLE
+from amiro.activity.lifting import level
 from amiro.activity.motion import FPS, Body, perform
+from amiro.activity.replay import load_motion
 from amiro.activity.skeleton import NUM_JOINTS, FloatArray, J
 from amiro.core.messages import CameraInfo, Pose2D
 from amiro.robot.camera import Camera, CameraObservation
+from amiro.sim.config import SkeletonsSection
 from amiro.sim.residents import Resident
 from amiro.sim.simulator import Simulation
 
@@ -29,12 +36,25 @@ HISTORY_S = 4.0
 OCCLUSION_VISIBLE = tuple(J[n] for n in ("Head", "Neck", "SpineShoulder", "ShoulderLeft"))
 
 
-class SkeletonStream:
-    """One resident's body-frame skeletons, one per 1/FPS s of simulated time."""
+Motion = dict[str, list[FloatArray]]  # real body-frame clips by activity
 
-    def __init__(self, body: Body, rng: np.random.Generator) -> None:
+
+class SkeletonStream:
+    """One resident's body-frame skeletons, one per 1/FPS s of simulated time, with the
+    sensor's jitter and lost joints."""
+
+    def __init__(
+        self,
+        body: Body,
+        rng: np.random.Generator,
+        sensor: SkeletonsSection | None = None,
+        motion: Motion | None = None,
+    ) -> None:
         self.body = body
         self.rng = rng
+        self.sensor = sensor or SkeletonsSection(noise_m=0.0, dropout=0.0, pitch_deg=0.0)
+        self.motion = motion or {}
+        self.last_clean: FloatArray | None = None
         self.frames: deque[FloatArray] = deque(maxlen=int(HISTORY_S * FPS))
         self.next_t: float | None = None
         self.pending: list[FloatArray] = []
@@ -53,14 +73,28 @@ class SkeletonStream:
             if not self.pending:
                 self.pending = self._clip(activity, sitting)
                 self.clips += 1
-            self.frames.append(self.pending.pop(0))
+            self.last_clean = self.pending.pop(0)
+            self.frames.append(self._sensed(self.last_clean))
             self.count += 1
             self.next_t += 1.0 / FPS
 
+    def _sensed(self, frame: FloatArray) -> FloatArray:
+        """One frame as the sensor gives it: jittered, some joints lost."""
+        out = frame
+        if self.sensor.noise_m > 0.0:
+            out = out + self.rng.normal(0.0, self.sensor.noise_m, out.shape)
+        if self.sensor.dropout > 0.0:
+            out = out.copy()
+            out[self.rng.random(NUM_JOINTS) < self.sensor.dropout] = np.nan
+        return out
+
     def _clip(self, activity: str, sitting: bool) -> list[FloatArray]:
-        if activity == "falling" and self.clips > 0:
-            return [self.frames[-1]]  # after the fall: lying still
+        if activity == "falling" and self.clips > 0 and self.last_clean is not None:
+            return [self.last_clean]  # after the fall: lying still
         action = IDLE if activity == "idle" else activity
+        recorded = self.motion.get(action)
+        if recorded:
+            return list(recorded[int(self.rng.integers(len(recorded)))])
         clip = list(perform(action, self.body, self.rng, FPS, sitting))
         if activity == "falling" and sitting:  # a seated person gets up, then falls
             return list(perform("standing_up", self.body, self.rng, FPS)) + clip
@@ -140,9 +174,14 @@ def framing(
 class SkeletonCamera:
     """The skeleton source of the simulated robot (see :class:`SkeletonSource`)."""
 
-    def __init__(self, sim: Simulation, rng: np.random.Generator) -> None:
+    def __init__(
+        self, sim: Simulation, rng: np.random.Generator, sensor: SkeletonsSection | None = None
+    ) -> None:
+        """``sensor``: default the simulation's ``sim.skeletons``."""
         self.sim = sim
         self.rng = rng
+        self.sensor = sensor or sim.config.skeletons
+        self.motion = load_motion(self.sensor.replay) if self.sensor.replay else {}
         self.streams: dict[str, SkeletonStream] = {}
 
     def framing(self, person: str) -> tuple[float, bool] | None:
@@ -154,12 +193,13 @@ class SkeletonCamera:
         if person not in residents or all(o.name != person for o in self.sim.observe()):
             return None
         stream = self._advance(person)
-        return None if stream is None else self._view(stream.last(frames), person)
+        return None if stream is None else self._tilted(self._view(stream.last(frames), person))
 
     def fresh(self, person: str, count: int) -> tuple[FloatArray, int] | None:
         """What the camera streams of ``person`` (known to be in view) since frame number
-        ``count``: the frames as :meth:`window` gives them (from the view now), and the
-        newest frame's number."""
+        ``count``: the frames as :meth:`window` gives them (from the view now) but levelled,
+        without the sensor's tilt (the bridge carries them in ``camera_level``; the edge's
+        feed tilts them as :meth:`window` does), and the newest frame's number."""
         stream = self._advance(person)
         if stream is None or stream.count <= count:
             return None
@@ -171,7 +211,9 @@ class SkeletonCamera:
             return None
         stream = self.streams.get(person)
         if stream is None:
-            stream = self.streams[person] = SkeletonStream(Body.random(self.rng), self.rng)
+            stream = self.streams[person] = SkeletonStream(
+                Body.random(self.rng), self.rng, self.sensor, self.motion
+            )
         sitting = resident.posture != "standing"
         stream.advance(self.sim.residents.now(), resident.activity, sitting)
         return stream
@@ -185,10 +227,19 @@ class SkeletonCamera:
         pose, yaw = robot.true_pose, robot.head_yaw
         optical = camera.to_optical(points, pose, yaw, robot.head_pitch)
         seen = in_image(optical, camera.info(0.0))
-        level = to_level(camera, points, pose, yaw)
-        level[~seen] = np.nan
-        out: FloatArray = level.reshape(frames, NUM_JOINTS, 3)
+        levelled = to_level(camera, points, pose, yaw)
+        levelled[~seen] = np.nan
+        out: FloatArray = levelled.reshape(frames, NUM_JOINTS, 3)
         if resident.skeleton_occluded:
             hidden = [j for j in range(NUM_JOINTS) if j not in OCCLUSION_VISIBLE]
             out[:, hidden] = np.nan
         return out
+
+    def _tilted(self, frames: FloatArray) -> FloatArray:
+        return sensor_tilt(frames, self.sensor.pitch_deg)
+
+
+def sensor_tilt(frames: FloatArray, pitch_deg: float) -> FloatArray:
+    """Levelled skeletons as a sensor pitched down by ``pitch_deg`` reports them."""
+    out: FloatArray = level(frames, -math.radians(pitch_deg))
+    return out
