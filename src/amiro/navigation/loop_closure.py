@@ -33,7 +33,7 @@ class LoopParams:
     window_per_m: float = 0.02  # search half-width per metre travelled since the last closure
     window_max_m: float = 16.0
     theta_base: float = math.radians(3.0)
-    theta_per_m: float = math.radians(0.03)
+    theta_per_m: float = math.radians(0.1)
     theta_max: float = math.radians(15.0)
     min_score: float = 0.5
     max_ambiguity: float = 0.85  # runner-up score / best score
