@@ -124,6 +124,8 @@ def test_a_fall_from_the_dashboard_preempts_a_running_hydration(
     assert res.status_code == 200 and res.json()["priority"] == 100
     wait_for(lambda: (engine.current() or {}).get("name") == "fall")
     assert "hydration" in [q["name"] for q in engine.queue_snapshot()]  # put aside
+    # The dashboard's state is a snapshot published by the runtime: it follows the engine.
+    wait_for(lambda: (client.get("/api/state").json()["current"] or {}).get("name") == "fall")
     state = client.get("/api/state").json()
     assert state["current"]["name"] == "fall" and state["current"]["priority"] == 100
     gateway = running.served.gateway
