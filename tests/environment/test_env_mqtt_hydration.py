@@ -33,6 +33,11 @@ def test_hot_reading_over_mqtt_runs_hydration_and_acks_over_mqtt(
     assert not any(r.name == "hydration" for r in system.engine.runs.values())
 
     peer.publish("amiro/home/living_room/temperature", {"value": 31.5, "unit": "C"})
+    # Hold the simulated clock until the reading is in the bridge's inbox, so the behaviour
+    # starts at the same simulated moment whatever the broker's wall-clock latency.
+    assert wait_for(
+        lambda: env.bridge is not None and env.bridge.inbox.pending() > 0, 10, lambda: None
+    )
     assert wait_for(
         lambda: any(r.name == "hydration" for r in system.engine.runs.values()),
         10,
