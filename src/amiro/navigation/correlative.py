@@ -143,13 +143,17 @@ class CorrelativeMatcher:
             sc = self._scores(self.coarse, px, py, cand.x, cand.y, ths, near)
             found.extend(self._distinct_best(sc, ths, near, cand, count=2))
         found.sort(key=lambda t: -t[0])
+        # the wide cells overhang the window: what lies beyond it was not asked for
+        reach = n_xy * self.factor * self.resolution
         chosen: list[Pose2D] = []
         for _, p in found:
+            if max(abs(p.x - guess.x), abs(p.y - guess.y)) > reach:
+                continue
             if all(p.distance_to(q) >= self.separation for q in chosen):
                 chosen.append(p)
             if len(chosen) == 4:
                 break
-        return chosen
+        return chosen or [guess]
 
     def _scores(
         self,
