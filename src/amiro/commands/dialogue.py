@@ -48,10 +48,14 @@ def register(sub: Subcommands) -> None:
     aev.add_argument("--lang", default="en", help="language of the recordings (default en)")
     aev.add_argument(
         "--backend",
-        default="pocketsphinx",
-        help="pocketsphinx (default), vosk, google, or a plugin's registered asr backend",
+        default="whisper",
+        help="whisper (default; en, fr, ro), pocketsphinx (en), vosk, google, or a plugin's",
     )
-    aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
+    aev.add_argument(
+        "--grammar",
+        default="nlu",
+        help="expected speech: nlu (commands), answers (yes/no/later) or none (free)",
+    )
     aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
     aev.add_argument(
         "--reject-below",
@@ -183,11 +187,11 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
     from amiro.dialogue.understanding import Nlu
 
     registry.resolve("asr", args.backend)  # an unknown name: one line with the choices
-    defaults = AsrConfig()
+    defaults = AsrConfig(backend=args.backend)
     reject_below = args.reject_below
     if reject_below is None:
         answers = args.grammar == "answers"
-        reject_below = defaults.listen_reject_below if answers else defaults.reject_below
+        reject_below = defaults.listen_threshold if answers else defaults.reject_below
     if not 0.0 <= reject_below <= 1.0:
         raise ConfigError(f"--reject-below {reject_below}: must be between 0 and 1")
     # every result kept here: the report applies the thresholds itself
