@@ -68,6 +68,10 @@ def register(sub: Subcommands) -> None:
         metavar="DIR",
         help="WAV files that must be rejected: adds false acceptance/rejection and a ROC table",
     )
+    abn = add_command(
+        asr, "bench", _bench_asr, help="Whisper's first load and real-time factor (5 s commands)"
+    )
+    abn.add_argument("--repeats", type=int, default=5, help="commands per language")
     syn = add_command(
         asr, "synthesize", _synthesize, help="speak commands into WAV files (espeak-ng, noise)"
     )
@@ -185,6 +189,7 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
     from amiro.dialogue.phrases import check_language
     from amiro.dialogue.stack import make_recognizer
     from amiro.dialogue.understanding import Nlu
+    from amiro.evaluation.asr_intent import intent_report
 
     registry.resolve("asr", args.backend)  # an unknown name: one line with the choices
     defaults = AsrConfig(backend=args.backend)
@@ -198,19 +203,45 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
     asr = AsrConfig(backend=args.backend, vosk_model=args.vosk_model, reject_below=0.0)
     lang = check_language(args.lang)
     recognizer = make_recognizer(DialogueConfig(asr=asr), args.grammar, lang)
-    heard = transcribe_dir(args.dir, recognizer)
-    report = accuracy_report(heard, reject_below)
+    heard = transcribe_dir(args.dir, recognizer, lang)
+    report = accuracy_report(heard, reject_below, lang)
     text = (
         f"{report['files']} files: WER {100 * report['wer']:.1f}%, sentence accuracy "
         f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}, "
         f"{100 * report['rejected']:.1f}% rejected below {reject_below:g}"
     )
+    nlu = Nlu()
+
+    def intent_of(text: str) -> str:
+        return nlu.parse(text, lang).intent
+
+    intents = intent_report(args.dir, heard, reject_below, intent_of)
+    report.update(intents)
+    if intents["intent_accuracy"] is not None:
+        text += f"\nintent from speech: {100 * intents['intent_accuracy']:.1f}% right"
+        text += f" ({intents['in_scope_files']} commands)"
+    if intents["out_of_context_acted_on"] is not None:
+        text += f"\nout of context acted on: {100 * intents['out_of_context_acted_on']:.1f}%"
+        text += f" ({intents['out_of_context_files']} recordings)"
     if args.out_of_grammar is not None:
-        oog = transcribe_dir(args.out_of_grammar, recognizer)
-        nlu = Nlu()
-        rejection = rejection_report(heard, oog, reject_below, lambda t: nlu.parse(t, lang).intent)
+        oog = transcribe_dir(args.out_of_grammar, recognizer, lang)
+        rejection = rejection_report(heard, oog, reject_below, intent_of)
         report.update(rejection)
         text += "".join(f"\n{describe_rates(r)}" for r in rejection["roc"])
+    return emit_report(args, report, text)
+
+
+def _bench_asr(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.evaluation.asr_bench import bench
+
+    if args.repeats < 1:
+        raise ConfigError(f"--repeats {args.repeats}: must be 1 or more")
+    report = bench(args.repeats)
+    text = f"first load {report['first_load_s']:.2f} s; RTF on {report['command_s']:g} s commands: "
+    text += ", ".join(
+        f"{lang} {r['median']:.3f} (max {r['max']:.3f})" for lang, r in report["rtf"].items()
+    )
     return emit_report(args, report, text)
 
 
