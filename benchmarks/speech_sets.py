@@ -13,6 +13,7 @@ Generated speech (espeak-ng: say "generated", never "real"):
   gen_{en,fr,ro}/ amiro's held-out NLU utterances (data/dialogue/eval, labelled intents),
                   spoken by espeak-ng, reverberated (sox reverb 50 %) with brown noise at
                   15 dB SNR, seeded
+  clean_{en,fr,ro}/ the same utterances, clean
   gen_ooc_en/     the 50 English out-of-grammar sentences (data/dialogue/grammar) and 10
                   noise clips, for Listen's non-answers
 
@@ -99,9 +100,11 @@ def generated_sets(out: Path, seed: int = 0) -> None:
             rows = [json.loads(line) for line in path.read_text("utf-8").splitlines() if line]
             for i, row in enumerate(rows):
                 lang = row["lang"]
-                wav = out / f"gen_{lang}" / f"{i:03d}.wav"
-                write_wav(wav, noisy_room(espeak.synthesize(row["text"], lang), rng, Path(tmp)))
-                _label(wav, row["text"], row["intent"])
+                audio = espeak.synthesize(row["text"], lang)
+                for name, spoken in (("clean", audio), ("gen", noisy_room(audio, rng, Path(tmp)))):
+                    wav = out / f"{name}_{lang}" / f"{i:03d}.wav"
+                    write_wav(wav, spoken)
+                    _label(wav, row["text"], row["intent"])
         for i, text in enumerate(read_commands(SHIPPED_OUT_OF_GRAMMAR)):
             wav = out / "gen_ooc_en" / f"{i:03d}.wav"
             write_wav(wav, espeak.synthesize(text, "en"))

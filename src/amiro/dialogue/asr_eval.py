@@ -135,9 +135,10 @@ def rejection_report(
                 "file": h.file,
                 "hypothesis": normalize(h.transcript.guess),
                 "confidence": round(h.transcript.confidence, 4),
-                "accepted": bool(gate(h.transcript, reject_below).text),
+                "accepted": bool(text),
+                "intent": intent_of(text) if text else OUT_OF_SCOPE,
             }
-            for h in out_of_grammar
+            for h, text in ((h, gate(h.transcript, reject_below).text) for h in out_of_grammar)
         ],
     }
 
