@@ -1,12 +1,16 @@
-"""Silero VAD (the model in the faster-whisper wheel): streaming gives the same speech
-probabilities as the whole recording, and the endpointer cuts utterances at pauses."""
+"""The audio front end: any WAV read as 16-bit mono; Silero VAD (the model in the
+faster-whisper wheel): streaming gives the same speech probabilities as the whole recording,
+and the endpointer cuts utterances at pauses."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
+from scipy.io import wavfile
 
-from amiro.dialogue.audio import ASR_RATE, Audio, resample
+from amiro.dialogue.audio import ASR_RATE, Audio, read_wav, resample
 from amiro.dialogue.silero import WINDOW, SileroVad, as_float, speech_span, utterances
 from amiro.dialogue.tts import EspeakSynthesizer
 
@@ -49,3 +53,22 @@ def test_no_speech_span_in_silence_or_hum() -> None:
     hum = (3000 * np.sin(2 * np.pi * 50 * t)).astype(np.int16)
     assert speech_span(Audio(np.zeros(ASR_RATE, np.int16), ASR_RATE)) is None
     assert speech_span(Audio(hum, ASR_RATE)) is None
+
+
+@pytest.mark.parametrize("kind", ["float32", "int32", "uint8", "int16"])
+def test_any_pcm_or_float_wav_reads_as_16_bit_mono(tmp_path: Path, kind: str) -> None:
+    rng = np.random.default_rng(0)
+    mono = (8000 * np.sin(np.linspace(0, 200, 44100)) + rng.normal(0, 50, 44100)).astype(np.int16)
+    stereo = np.stack([mono, mono], axis=1).astype(np.float64) / 32768.0
+    data = {
+        "float32": stereo.astype(np.float32),
+        "int32": (stereo * 2**31).astype(np.int32),
+        "uint8": np.clip(np.round(stereo * 128 + 128), 0, 255).astype(np.uint8),
+        "int16": (stereo * 32768).astype(np.int16),
+    }[kind]
+    wavfile.write(tmp_path / "x.wav", 44100, data)
+    audio = read_wav(tmp_path / "x.wav")
+    assert audio.rate == 44100 and audio.samples.dtype == np.int16 and audio.samples.ndim == 1
+    tolerance = 130 if kind == "uint8" else 2  # 8 bits: steps of 256
+    assert np.abs(audio.samples.astype(int) - mono.astype(int)).max() <= tolerance
+    assert resample(audio).rate == ASR_RATE
