@@ -5,13 +5,14 @@ the recogniser heard, not on the simulator's text (``dialogue.hearing: audio``).
 
 Only the simulator's replies are voiced: they are the only :class:`SpeechHeard` that carry an
 intent label (its oracle); what a real microphone's recogniser publishes goes straight to the
-NLU.  One recogniser per language, built on first use (or by :meth:`warm_up`); the Whisper
-model under them is loaded once per process."""
+NLU.  One recogniser per language, built when its first reply is heard (the Whisper model
+under them is loaded then, once per process, about 1.5 s): a system that never hears a
+simulated reply, as most tests, never loads it."""
 
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import replace
 
 from amiro.core.messages import SpeechHeard
@@ -43,17 +44,6 @@ class AudioLoopUnderstanding:
             if lang not in self.recognizers:
                 self.recognizers[lang] = self.recognizer_for(lang)
             return self.recognizers[lang]
-
-    def warm_up(self, langs: Iterable[str]) -> threading.Thread:
-        """Load the recognisers in the background: the first reply must not wait for them.
-        Not a daemon: a process that ends while the model loads waits for it (a native
-        thread killed mid-load aborts the interpreter)."""
-        order = list(dict.fromkeys(langs))
-        thread = threading.Thread(
-            target=lambda: [self.recognizer(lang) for lang in order], name="asr", daemon=False
-        )
-        thread.start()
-        return thread
 
     def intent(self, heard: SpeechHeard) -> tuple[str, float]:
         if heard.intent is None:  # a real recogniser's result: already heard

@@ -74,7 +74,7 @@ class DialogueConfig(Section):
         default_factory=dict, description="language -> Rasa-style YAML replacing the shipped data"
     )
     words_per_second: float = Field(default=2.5, gt=0.0)
-    hearing: Literal["audio", "text-oracle"] = Field(
+    hearing: Literal["audio", "text-oracle"] = Field(  # the single-process simulator only
         default="audio",
         description="in the simulator: audio voices each resident's reply (espeak-ng, their "
         "language) into the recogniser of their language; text-oracle hands the NLU the "

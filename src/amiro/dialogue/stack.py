@@ -57,6 +57,14 @@ def make_recognizer(
     return ConfidenceGate(recognizer, cfg.asr.listen_threshold if answers else cfg.asr.reject_below)
 
 
+def text_hearing(cfg: DialogueConfig) -> DialogueConfig:
+    """The configuration with the text oracle for the simulated replies: a split deployment's
+    understanding answers a service call of a few seconds (``amiro deploy``), too short for
+    voicing and recognising a reply on a loaded 2-core machine, so only the single-process
+    system hears the simulated residents."""
+    return cfg.model_copy(update={"hearing": "text-oracle"})
+
+
 def build_understanding(
     cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
 ) -> tuple[Nlu, Understanding]:
@@ -87,9 +95,7 @@ def amiro_understanding(
     def recognizer_for(lang: str) -> Recognizer:
         return make_recognizer(cfg, "answers", lang, names)
 
-    loop = AudioLoopUnderstanding(nlu, synthesizer, recognizer_for, profiles)
-    loop.warm_up([p.lang for p in profiles.values()] or ["en"])
-    return loop
+    return AudioLoopUnderstanding(nlu, synthesizer, recognizer_for, profiles)
 
 
 def oracle_understanding(

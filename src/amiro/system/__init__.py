@@ -35,7 +35,7 @@ from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.profiles import household_voices
-from amiro.dialogue.stack import Dialogue, build_dialogue
+from amiro.dialogue.stack import Dialogue, build_dialogue, text_hearing
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.config import EnvironmentConfig
 from amiro.environment.rules import RulesNode
@@ -396,9 +396,7 @@ def _assemble(
     environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     sources = environment_sources(runtime, environment, rooms)
     voices = household_voices(cfg.people())
-    hearing = (
-        cfg.dialogue if simulated else cfg.dialogue.model_copy(update={"hearing": "text-oracle"})
-    )
+    hearing = cfg.dialogue if simulated else text_hearing(cfg.dialogue)
     dialogue = build_dialogue(runtime, hearing, voices, submit=layer.submit, sources=sources)
     modules.speech, modules.nlu = dialogue.speech, dialogue.nlu
     return System(
