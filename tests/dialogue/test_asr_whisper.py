@@ -13,7 +13,7 @@ from amiro.dialogue import whisper_model
 from amiro.dialogue.asr import ConfidenceGate
 from amiro.dialogue.asr_prompt import prompt_for
 from amiro.dialogue.asr_testset import noise_clip
-from amiro.dialogue.asr_whisper import WhisperRecognizer
+from amiro.dialogue.asr_whisper import Decoded, WhisperRecognizer
 from amiro.dialogue.asr_whisper import whisper_model as load_model
 from amiro.dialogue.audio import Audio, read_wav, resample
 from amiro.dialogue.config import AsrConfig, DialogueConfig
@@ -130,3 +130,17 @@ def test_joined_weights_are_checked(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     path = whisper_model.packaged_model()
     assert whisper_model.sha256(path / "model.bin") == whisper_model.MODEL_SHA256
     assert {p.name for p in path.iterdir()} == {"model.bin", *whisper_model.SIDE_FILES}
+
+
+def test_confidence_reads_half_at_each_limit_and_ignores_language_on_a_word() -> None:
+    def decoded(logprob: float, no_speech: float, top: str, p: float, s: float) -> Decoded:
+        return Decoded("turn on the light", logprob, no_speech, top, p, "en", s)
+
+    assert decoded(-0.1, 0.0, "en", 0.9, 2.0).confidence() > 0.9
+    assert decoded(-1.0, 0.0, "en", 0.9, 2.0).confidence() == pytest.approx(0.5)
+    assert decoded(-0.1, 0.6, "en", 0.9, 2.0).confidence() == pytest.approx(0.5)
+    assert decoded(-0.1, 0.0, "fr", 0.6, 2.0).confidence() == pytest.approx(0.5)
+    assert decoded(-0.1, 0.0, "fr", 0.99, 2.0).confidence() < 0.2  # French, surely
+    assert decoded(-0.1, 0.0, "fr", 0.99, 0.4).confidence() > 0.9  # one word: no telling
+    looping = Decoded("fail better. " * 12, -0.05, 0.0, "en", 0.9, "en", 9.0)
+    assert looping.confidence() == 0.0
