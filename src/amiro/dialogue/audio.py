@@ -4,6 +4,7 @@ per-speaker preprocessing of the profiles (gain, high-pass)."""
 from __future__ import annotations
 
 import io
+import warnings
 import wave
 from dataclasses import dataclass
 from math import gcd
@@ -36,7 +37,9 @@ def read_wav_bytes(data: bytes, source: str = "audio") -> Audio:
     """Any PCM (8, 16, 24, 32 bit) or float WAV, any rate, mono or several channels: 16-bit
     mono at the file's rate (channels averaged); :func:`resample` takes it to 16 kHz."""
     try:
-        rate, x = wavfile.read(io.BytesIO(data))
+        with warnings.catch_warnings():  # a streamed WAV (espeak-ng --stdout) has no length
+            warnings.simplefilter("ignore", wavfile.WavFileWarning)
+            rate, x = wavfile.read(io.BytesIO(data))
     except (ValueError, EOFError, OSError) as exc:
         raise ConfigError(f"{source}: not a WAV file ({exc})") from None
     if x.dtype.kind == "f":
