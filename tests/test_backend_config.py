@@ -26,7 +26,7 @@ FIELDS = [
     ("perception.camera.detector", "hog, onnx"),
     ("navigation.localization", "amcl, oracle"),
     ("activity.backend", "camera-mediapipe, camera-onnx, onnx, oracle"),
-    ("dialogue.asr.backend", "google, pocketsphinx, vosk"),
+    ("dialogue.asr.backend", "google, pocketsphinx, vosk, whisper"),
     ("dialogue.tts.backend", "espeak, google, piper"),
     ("dialogue.nlu", "amiro, oracle"),
 ]
@@ -127,7 +127,7 @@ def test_a_plugins_recognizer_gets_the_asr_section_grammar_and_language(plugins:
     recognizer = make_recognizer(cfg, grammar="answers", lang="fr")
     assert isinstance(recognizer, ConfidenceGate)
     assert recognizer.recognizer == (cfg.asr.reject_below, "answers", "fr")
-    assert recognizer.reject_below == cfg.asr.listen_reject_below
+    assert recognizer.reject_below == cfg.asr.listen_threshold
 
 
 def test_a_missing_dependency_names_the_extra(plugins: Path) -> None:

@@ -10,7 +10,14 @@ from amiro.behavior.engine import GraphRun
 from amiro.behavior.graph import TaskGraph
 from amiro.behavior.handlers import yaml_handler
 from amiro.behavior.task import TaskError, make_task
-from amiro.core.messages import Acknowledgement, Notification, Point, SpeechRequest
+from amiro.core import names
+from amiro.core.messages import (
+    Acknowledgement,
+    Notification,
+    Point,
+    SpeechHeard,
+    SpeechRequest,
+)
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
 from amiro.system import System, SystemConfig, build_system
 
@@ -118,3 +125,37 @@ def test_search_fails_cleanly_when_nobody_is_home() -> None:
     detail = run.records[0].detail
     assert detail["reason"] == "not_found"
     assert sorted(detail["rooms"]) == ["bathroom", "bedroom", "kitchen", "living_room"]
+
+
+def _listen_for_affirm(system: System, reprompts: int) -> tuple[GraphRun, list[SpeechRequest]]:
+    rt = system.runtime
+    said: list[SpeechRequest] = []
+    rt.bus.subscribe(names.SAY, SpeechRequest, said.append)
+    graph = TaskGraph("ask", 1, blackboard={"lang": "en", "person": "nobody"})
+    listen = {"expect": ["affirm"], "timeout_s": 5, "reprompts": reprompts}
+    graph.add("listen", make_task("Listen", listen))
+    run = system.engine.submit(graph)
+    rt.spin_for(0.5)
+    # a recogniser's result (no oracle intent): not an answer to a yes/no question
+    rt.bus.publish(names.HEARD, SpeechHeard("what is the weather tomorrow", "en", "maria"))
+    rt.spin_for(1.0)
+    return run, said
+
+
+def test_listen_asks_again_after_a_non_answer() -> None:
+    system = home(trigger=False)
+    run, said = _listen_for_affirm(system, reprompts=1)
+    assert [s.act for s in said if s.act == "answer_reprompt"] == ["answer_reprompt"]
+    assert not run.done
+    system.runtime.bus.publish(names.HEARD, SpeechHeard("yes please", "en", "maria"))
+    system.runtime.spin_until(lambda: run.done, 30.0)
+    assert run.outcome == "completed"
+    assert [r.detail["intent"] for r in run.records] == ["affirm"]
+
+
+def test_listen_gives_up_on_non_answers_once_it_asked_again() -> None:
+    system = home(trigger=False)
+    run, said = _listen_for_affirm(system, reprompts=0)
+    assert "answer_reprompt" not in [s.act for s in said]
+    assert run.done and run.outcome == "failed"
+    assert run.records[-1].detail["reason"] == "no_answer"

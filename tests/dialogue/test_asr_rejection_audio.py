@@ -74,7 +74,7 @@ def test_the_configured_recognizer_rejects_and_the_manager_says_so(
     espeak: EspeakSynthesizer,
 ) -> None:
     """Through ``make_recognizer`` (the config's threshold) to the dialogue manager."""
-    asr = make_recognizer(DialogueConfig())
+    asr = make_recognizer(DialogueConfig(asr=AsrConfig(backend="pocketsphinx")))
     heard = asr.transcribe(espeak.synthesize(OUT_OF_GRAMMAR[0], "en"))
     assert heard.text == "" and heard.rejected
     manager = DialogueManager(Nlu(), shipped_domain(), Actions(offline_sources()))
@@ -85,7 +85,8 @@ def test_listen_answers_have_their_own_threshold() -> None:
     cfg = DialogueConfig(asr=AsrConfig(reject_below=0.6, listen_reject_below=0.3))
     answers = make_recognizer(cfg, grammar="answers")
     assert isinstance(answers, ConfidenceGate) and answers.reject_below == 0.3
-    assert DialogueConfig().asr.listen_reject_below == 0.0  # Listen rejects nothing by default
+    # pocketsphinx's Listen rejects nothing by default
+    assert AsrConfig(backend="pocketsphinx").listen_threshold == 0.0
 
 
 def test_out_of_grammar_set_is_outside_the_grammar(recognizer: PocketsphinxRecognizer) -> None:
@@ -118,6 +119,7 @@ def test_cli_reports_false_acceptance_and_rejection(
     write_test_set(OUT_OF_GRAMMAR, tmp_path / "oog", espeak, np.random.default_rng(0))
     write_noise_clips(1, tmp_path / "oog", np.random.default_rng(0))
     argv = ["asr", "evaluate", str(tmp_path / "in"), "--out-of-grammar", str(tmp_path / "oog")]
+    argv += ["--backend", "pocketsphinx"]
     assert _cli([*argv, "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert report["files"] == 2 and report["sentence_accuracy"] == 1.0  # the contract keys

@@ -46,8 +46,8 @@ def test_hydration_postpone_branch_with_the_nlu() -> None:
 
 
 @pytest.mark.slow
-def test_hydration_in_english_through_real_audio() -> None:
-    system, outcome = _run("en", DialogueConfig(asr=AsrConfig(sim_audio=True)))
+def test_hydration_in_english_through_pocketsphinx() -> None:
+    system, outcome = _run("en", DialogueConfig(asr=AsrConfig(backend="pocketsphinx")))
     assert outcome == "completed"
     loop = system.engine.modules.nlu
     assert isinstance(loop, AudioLoopUnderstanding)

@@ -129,7 +129,9 @@ def test_cli_asr_evaluate(recordings: Path, capsys: pytest.CaptureFixture[str]) 
 
     parser = argparse.ArgumentParser()
     register(parser.add_subparsers())
-    args = parser.parse_args(["asr", "evaluate", str(recordings), "--json"])
+    args = parser.parse_args(
+        ["asr", "evaluate", str(recordings), "--backend", "pocketsphinx", "--json"]
+    )
     assert args.handler(args) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["files"] == len(COMMANDS) and {"wer", "sentence_accuracy", "rtf"} <= set(out)

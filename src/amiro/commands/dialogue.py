@@ -49,10 +49,14 @@ def register(sub: Subcommands) -> None:
     aev.add_argument("--lang", default="en", help="language of the recordings (default en)")
     aev.add_argument(
         "--backend",
-        default="pocketsphinx",
-        help="pocketsphinx (default), vosk, google, or a plugin's registered asr backend",
+        default="whisper",
+        help="whisper (default; en, fr, ro), pocketsphinx (en), vosk, google, or a plugin's",
     )
-    aev.add_argument("--grammar", default="nlu", help="pocketsphinx: nlu, answers or none (LM)")
+    aev.add_argument(
+        "--grammar",
+        default="nlu",
+        help="expected speech: nlu (commands), answers (yes/no/later) or none (free)",
+    )
     aev.add_argument("--vosk-model", type=Path, help="Vosk model directory")
     aev.add_argument(
         "--reject-below",
@@ -65,6 +69,10 @@ def register(sub: Subcommands) -> None:
         metavar="DIR",
         help="WAV files that must be rejected: adds false acceptance/rejection and a ROC table",
     )
+    abn = add_command(
+        asr, "bench", _bench_asr, help="Whisper's first load and real-time factor (5 s commands)"
+    )
+    abn.add_argument("--repeats", type=int, default=5, help="commands per language")
     syn = add_command(
         asr, "synthesize", _synthesize, help="speak commands into WAV files (espeak-ng, noise)"
     )
@@ -197,32 +205,59 @@ def _evaluate_asr(args: argparse.Namespace) -> int:
     from amiro.dialogue.phrases import check_language
     from amiro.dialogue.stack import make_recognizer
     from amiro.dialogue.understanding import Nlu
+    from amiro.evaluation.asr_intent import intent_report
 
     registry.resolve("asr", args.backend)  # an unknown name: one line with the choices
-    defaults = AsrConfig()
+    defaults = AsrConfig(backend=args.backend)
     reject_below = args.reject_below
     if reject_below is None:
         answers = args.grammar == "answers"
-        reject_below = defaults.listen_reject_below if answers else defaults.reject_below
+        reject_below = defaults.listen_threshold if answers else defaults.reject_below
     if not 0.0 <= reject_below <= 1.0:
         raise ConfigError(f"--reject-below {reject_below}: must be between 0 and 1")
     # every result kept here: the report applies the thresholds itself
     asr = AsrConfig(backend=args.backend, vosk_model=args.vosk_model, reject_below=0.0)
     lang = check_language(args.lang)
     recognizer = make_recognizer(DialogueConfig(asr=asr), args.grammar, lang)
-    heard = transcribe_dir(args.dir, recognizer)
-    report = accuracy_report(heard, reject_below)
+    heard = transcribe_dir(args.dir, recognizer, lang)
+    report = accuracy_report(heard, reject_below, lang)
     text = (
         f"{report['files']} files: WER {100 * report['wer']:.1f}%, sentence accuracy "
         f"{100 * report['sentence_accuracy']:.1f}%, RTF {report['rtf']:.3f}, "
         f"{100 * report['rejected']:.1f}% rejected below {reject_below:g}"
     )
+    nlu = Nlu()
+
+    def intent_of(text: str) -> str:
+        return nlu.parse(text, lang).intent
+
+    intents = intent_report(args.dir, heard, reject_below, intent_of)
+    report.update(intents)
+    if intents["intent_accuracy"] is not None:
+        text += f"\nintent from speech: {100 * intents['intent_accuracy']:.1f}% right"
+        text += f" ({intents['in_scope_files']} commands)"
+    if intents["out_of_context_acted_on"] is not None:
+        text += f"\nout of context acted on: {100 * intents['out_of_context_acted_on']:.1f}%"
+        text += f" ({intents['out_of_context_files']} recordings)"
     if args.out_of_grammar is not None:
-        oog = transcribe_dir(args.out_of_grammar, recognizer)
-        nlu = Nlu()
-        rejection = rejection_report(heard, oog, reject_below, lambda t: nlu.parse(t, lang).intent)
+        oog = transcribe_dir(args.out_of_grammar, recognizer, lang)
+        rejection = rejection_report(heard, oog, reject_below, intent_of)
         report.update(rejection)
         text += "".join(f"\n{describe_rates(r)}" for r in rejection["roc"])
+    return emit_report(args, report, text)
+
+
+def _bench_asr(args: argparse.Namespace) -> int:
+    from amiro.core.config import ConfigError
+    from amiro.evaluation.asr_bench import bench
+
+    if args.repeats < 1:
+        raise ConfigError(f"--repeats {args.repeats}: must be 1 or more")
+    report = bench(args.repeats)
+    text = f"first load {report['first_load_s']:.2f} s; RTF on {report['command_s']:g} s commands: "
+    text += ", ".join(
+        f"{lang} {r['median']:.3f} (max {r['max']:.3f})" for lang, r in report["rtf"].items()
+    )
     return emit_report(args, report, text)
 
 

@@ -23,7 +23,7 @@ from amiro.deploy.config import NodeConfig
 from amiro.deploy.dialogue import DialogueBehaviors, UnderstandingService
 from amiro.deploy.web_robot import RemoteRobot
 from amiro.dialogue.profiles import household_voices
-from amiro.dialogue.stack import Dialogue, build_dialogue
+from amiro.dialogue.stack import Dialogue, build_dialogue, text_hearing
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
@@ -111,7 +111,7 @@ def add_cloud_services(
     voices = household_voices(cfg.people())
     sources = None if environment is None else environment_sources(runtime, environment, rooms)
     services.dialogue = build_dialogue(
-        runtime, cfg.dialogue, voices, submit=services.behaviors, sources=sources
+        runtime, text_hearing(cfg.dialogue), voices, submit=services.behaviors, sources=sources
     )
     if serves_understanding:
         services.understanding = runtime.add(UnderstandingService(services.dialogue.nlu))

@@ -30,7 +30,7 @@ from amiro.deploy.tf import MapOdomNode, robot_frames
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import Understanding
 from amiro.dialogue.profiles import household_voices
-from amiro.dialogue.stack import build_understanding
+from amiro.dialogue.stack import build_understanding, text_hearing
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.home.world import World, default_home_path
@@ -161,7 +161,7 @@ def edge_behaviors(
     nlu: Understanding = (
         RemoteUnderstanding(runtime.bus)
         if names.UNDERSTAND in node.call_services
-        else build_understanding(cfg.dialogue, residents, runtime.clock)[1]
+        else build_understanding(text_hearing(cfg.dialogue), residents, runtime.clock)[1]
     )
     modules = senses.modules(runtime, world, navigation)
     modules.speech = BusSpeechOutput(runtime.bus, cfg.dialogue.words_per_second)

@@ -8,12 +8,13 @@ from typing import Protocol
 
 from amiro.dialogue.audio import Audio
 
-# pocketsphinx grammar confidences are 0.5 at the limits tuned in asr_confidence.  Replies
-# to the robot's yes/no questions often run past the answers grammar ("sure, thank you, I'm
-# drinking now"), which reads as unexplained speech, so Listen rejects nothing by default
-# (measured trade-off in docs/dialogue.md).
+# Both recognisers' confidences read 0.5 at their limits (asr_confidence, asr_whisper).
+# pocketsphinx: replies to the robot's yes/no questions often run past the answers grammar
+# ("sure, thank you, I'm drinking now"), which reads as unexplained speech, so its Listen
+# rejects nothing by default (measured trade-off in docs/dialogue.md); Whisper transcribes
+# such replies freely, so its Listen keeps the common threshold.
 DEFAULT_REJECT_BELOW = 0.5
-DEFAULT_LISTEN_REJECT_BELOW = 0.0
+LISTEN_REJECT_BELOW = {"pocketsphinx": 0.0}
 
 
 @dataclass(frozen=True)

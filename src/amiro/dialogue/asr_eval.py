@@ -1,6 +1,8 @@
 """``amiro asr evaluate``: word error rate, sentence accuracy and real-time factor over WAV
 files whose transcript is the file name (``_`` between words) or a sidecar ``.txt``; with
-out-of-grammar recordings, how well low-confidence results are rejected."""
+out-of-grammar recordings, how well low-confidence results are rejected.  Transcripts are
+compared after :func:`amiro.dialogue.spoken_numbers.wer_normalize` (case, punctuation,
+diacritics, numbers as digits or words)."""
 
 from __future__ import annotations
 
@@ -16,6 +18,7 @@ from amiro.core.config import ConfigError
 from amiro.dialogue.asr import Recognizer, Transcript, gate
 from amiro.dialogue.audio import read_wav
 from amiro.dialogue.schema import OUT_OF_SCOPE
+from amiro.dialogue.spoken_numbers import wer_normalize
 from amiro.dialogue.text import normalize
 
 ROC_THRESHOLDS = (0.0, 0.3, 0.4, 0.5, 0.6, 0.7)
@@ -32,13 +35,13 @@ class Heard:
     decode_s: float
 
 
-def reference(wav: Path) -> str:
+def reference(wav: Path, lang: str = "en") -> str:
     sidecar = wav.with_suffix(".txt")
     text = sidecar.read_text(encoding="utf-8") if sidecar.is_file() else wav.stem.replace("_", " ")
-    return normalize(text)
+    return wer_normalize(text, lang)
 
 
-def transcribe_dir(directory: Path, recognizer: Recognizer) -> list[Heard]:
+def transcribe_dir(directory: Path, recognizer: Recognizer, lang: str = "en") -> list[Heard]:
     if not directory.is_dir():
         raise ConfigError(f"{directory}: no such directory")
     wavs = sorted(directory.glob("*.wav"))
@@ -50,22 +53,24 @@ def transcribe_dir(directory: Path, recognizer: Recognizer) -> list[Heard]:
         start = time.perf_counter()
         transcript = recognizer.transcribe(audio)
         decode_s = time.perf_counter() - start
-        heard.append(Heard(wav.name, reference(wav), transcript, audio.seconds, decode_s))
+        heard.append(Heard(wav.name, reference(wav, lang), transcript, audio.seconds, decode_s))
     return heard
 
 
-def accuracy_report(heard: list[Heard], reject_below: float = 0.0) -> dict[str, Any]:
+def accuracy_report(
+    heard: list[Heard], reject_below: float = 0.0, lang: str = "en"
+) -> dict[str, Any]:
     """The contract's ``files``, ``wer``, ``sentence_accuracy``, ``rtf`` on what is left after
     rejecting results below ``reject_below`` (a rejected command counts as not recognised)."""
     kept = [gate(h.transcript, reject_below) for h in heard]
-    hyps = [normalize(t.text) for t in kept]
+    hyps = [wer_normalize(t.text, lang) for t in kept]
     refs = [h.reference for h in heard]
     audio_s = sum(h.seconds for h in heard)
     rows = [
         {
             "file": h.file,
             "reference": h.reference,
-            "hypothesis": normalize(h.transcript.guess),
+            "hypothesis": wer_normalize(h.transcript.guess, lang),
             "confidence": round(h.transcript.confidence, 4),
             "accepted": not t.rejected,
         }
@@ -83,9 +88,9 @@ def accuracy_report(heard: list[Heard], reject_below: float = 0.0) -> dict[str, 
 
 
 def evaluate_asr(
-    directory: Path, recognizer: Recognizer, reject_below: float = 0.0
+    directory: Path, recognizer: Recognizer, reject_below: float = 0.0, lang: str = "en"
 ) -> dict[str, Any]:
-    return accuracy_report(transcribe_dir(directory, recognizer), reject_below)
+    return accuracy_report(transcribe_dir(directory, recognizer, lang), reject_below, lang)
 
 
 def _rates(
@@ -96,7 +101,8 @@ def _rates(
 ) -> dict[str, float]:
     accepted = [t.text for t in (gate(h.transcript, threshold) for h in out_of_grammar) if t.text]
     kept = [gate(h.transcript, threshold) for h in in_grammar]
-    correct = sum(normalize(t.text) == h.reference for h, t in zip(in_grammar, kept, strict=True))
+    pairs = zip(in_grammar, kept, strict=True)
+    correct = sum(wer_normalize(t.text) == h.reference for h, t in pairs)
     return {
         "threshold": threshold,
         "false_acceptance_rate": len(accepted) / len(out_of_grammar),
@@ -129,9 +135,10 @@ def rejection_report(
                 "file": h.file,
                 "hypothesis": normalize(h.transcript.guess),
                 "confidence": round(h.transcript.confidence, 4),
-                "accepted": bool(gate(h.transcript, reject_below).text),
+                "accepted": bool(text),
+                "intent": intent_of(text) if text else OUT_OF_SCOPE,
             }
-            for h in out_of_grammar
+            for h, text in ((h, gate(h.transcript, reject_below).text) for h in out_of_grammar)
         ],
     }
 

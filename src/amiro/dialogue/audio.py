@@ -4,6 +4,7 @@ per-speaker preprocessing of the profiles (gain, high-pass)."""
 from __future__ import annotations
 
 import io
+import warnings
 import wave
 from dataclasses import dataclass
 from math import gcd
@@ -12,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 from scipy import signal
+from scipy.io import wavfile
 
 from amiro.core.config import ConfigError
 
@@ -32,16 +34,22 @@ class Audio:
 
 
 def read_wav_bytes(data: bytes, source: str = "audio") -> Audio:
+    """Any PCM (8, 16, 24, 32 bit) or float WAV, any rate, mono or several channels: 16-bit
+    mono at the file's rate (channels averaged); :func:`resample` takes it to 16 kHz."""
     try:
-        with wave.open(io.BytesIO(data)) as w:
-            width, channels, rate = w.getsampwidth(), w.getnchannels(), w.getframerate()
-            frames = w.readframes(w.getnframes())
-    except (wave.Error, EOFError) as exc:
+        with warnings.catch_warnings():  # a streamed WAV (espeak-ng --stdout) has no length
+            warnings.simplefilter("ignore", wavfile.WavFileWarning)
+            rate, x = wavfile.read(io.BytesIO(data))
+    except (ValueError, EOFError, OSError) as exc:
         raise ConfigError(f"{source}: not a WAV file ({exc})") from None
-    if width != 2:
-        raise ConfigError(f"{source}: only 16-bit PCM WAV is supported")
-    samples = np.frombuffer(frames, dtype="<i2").reshape(-1, channels).mean(axis=1)
-    return Audio(samples.astype(np.int16), rate)
+    if x.dtype.kind == "f":
+        scaled = x.astype(np.float64) * 32768.0
+    elif x.dtype == np.uint8:  # 8-bit WAV is unsigned
+        scaled = (x.astype(np.float64) - 128.0) * 256.0
+    else:
+        scaled = x.astype(np.float64) / 2.0 ** (8 * x.dtype.itemsize - 16)
+    mono = scaled.mean(axis=1) if scaled.ndim == 2 else scaled
+    return Audio(np.clip(np.round(mono), -32768, 32767).astype(np.int16), int(rate))
 
 
 def read_wav(path: Path) -> Audio:

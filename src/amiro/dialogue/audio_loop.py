@@ -1,9 +1,18 @@
-"""Real audio in the simulator: the resident's English reply text is voiced with espeak-ng
-and recognised by pocketsphinx (yes/no/later grammar) before the NLU sees it, so Listen runs
-on what the recogniser heard, not on the simulator's text."""
+"""The simulated residents speak: each reply the simulator hands over as text is voiced with
+espeak-ng in the resident's language and voice (and the profile's gain and high-pass), then
+recognised by the recogniser of that language before the NLU sees it, so Listen runs on what
+the recogniser heard, not on the simulator's text (``dialogue.hearing: audio``).
+
+Only the simulator's replies are voiced: they are the only :class:`SpeechHeard` that carry an
+intent label (its oracle); what a real microphone's recogniser publishes goes straight to the
+NLU.  One recogniser per language, built when its first reply is heard (the Whisper model
+under them is loaded then, once per process, about 1.5 s): a system that never hears a
+simulated reply, as most tests, never loads it."""
 
 from __future__ import annotations
 
+import threading
+from collections.abc import Callable
 from dataclasses import replace
 
 from amiro.core.messages import SpeechHeard
@@ -19,24 +28,34 @@ class AudioLoopUnderstanding:
         self,
         nlu: Nlu,
         synthesizer: Synthesizer,
-        recognizer: Recognizer,
+        recognizer_for: Callable[[str], Recognizer],
         profiles: dict[str, SpeakerProfile],
     ) -> None:
         self.nlu = nlu
         self.synthesizer = synthesizer
-        self.recognizer = recognizer
+        self.recognizer_for = recognizer_for
         self.profiles = profiles
+        self.recognizers: dict[str, Recognizer] = {}
+        self._lock = threading.Lock()
         self.heard: list[tuple[str, str]] = []  # (said, recognised), for reports and tests
 
+    def recognizer(self, lang: str) -> Recognizer:
+        with self._lock:
+            if lang not in self.recognizers:
+                self.recognizers[lang] = self.recognizer_for(lang)
+            return self.recognizers[lang]
+
     def intent(self, heard: SpeechHeard) -> tuple[str, float]:
-        if heard.lang != "en":
+        if heard.intent is None:  # a real recogniser's result: already heard
             return self.nlu.intent(heard)
-        profile = self.profiles.get(heard.speaker or "") or SpeakerProfile()
+        profile = self.profiles.get(heard.speaker or "") or SpeakerProfile(lang=heard.lang)
         audio = self.synthesizer.synthesize(
-            heard.text, "en", profile.voice, profile.words_per_minute
+            heard.text, heard.lang, profile.voice, profile.words_per_minute
         )
         audio = preprocess(audio, profile.gain_db, profile.highpass_hz)
-        transcript = self.recognizer.transcribe(audio)
+        transcript = self.recognizer(heard.lang).transcribe(audio)
         self.heard.append((heard.text, transcript.text))
-        recognised = replace(heard, text=transcript.text, confidence=transcript.confidence)
+        recognised = replace(
+            heard, text=transcript.text, confidence=transcript.confidence, intent=None
+        )
         return self.nlu.intent(recognised)

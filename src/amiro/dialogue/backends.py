@@ -21,6 +21,7 @@ from amiro.core.registry import register
 register(
     "asr", "pocketsphinx", "amiro.dialogue.asr_pocketsphinx:pocketsphinx_recognizer", extra="speech"
 )
+register("asr", "whisper", "amiro.dialogue.asr_whisper:whisper_recognizer", extra="speech")
 register("asr", "vosk", "amiro.dialogue.asr_extras:vosk_recognizer")
 register("asr", "google", "amiro.dialogue.asr_extras:google_recognizer")
 register("tts", "espeak", "amiro.dialogue.tts:espeak_synthesizer")

@@ -1,5 +1,6 @@
 """``amiro chat``: a terminal conversation with the dialogue manager (offline sources), typed
-or, with ``--voice``, through the microphone (pocketsphinx, English)."""
+or, with ``--voice``, through the microphone (Silero VAD endpointing, then the configured
+recogniser: Whisper in en, fr and ro by default)."""
 
 from __future__ import annotations
 
@@ -27,10 +28,12 @@ def _typed() -> Iterator[str]:
 
 
 def _spoken(lang: str) -> Iterator[str]:
+    import numpy as np
+
     from amiro.dialogue.audio import ASR_RATE, Audio
     from amiro.dialogue.config import DialogueConfig
+    from amiro.dialogue.silero import SileroEndpointer
     from amiro.dialogue.stack import make_recognizer
-    from amiro.dialogue.vad import UtteranceDetector
 
     try:
         import sounddevice  # type: ignore[import-untyped,import-not-found,unused-ignore]
@@ -38,15 +41,15 @@ def _spoken(lang: str) -> Iterator[str]:
         raise ConfigError(
             "chat --voice: needs the extra amiro[speech] (sounddevice) and PortAudio"
         ) from None
-    recognizer = make_recognizer(DialogueConfig(), lang=lang)  # rejects out-of-grammar speech
-    detector = UtteranceDetector()
-    samples_per_frame = detector.frame_bytes // 2
+    recognizer = make_recognizer(DialogueConfig(), lang=lang)  # rejects what it misheard
+    endpointer = SileroEndpointer()
+    chunk = ASR_RATE // 10
     with sounddevice.RawInputStream(samplerate=ASR_RATE, channels=1, dtype="int16") as stream:
         print("(listening; Ctrl-C to stop)", file=sys.stderr)
         while True:
-            data, _ = stream.read(samples_per_frame)
-            utterance: Audio | None = detector.feed(bytes(data))
-            if utterance is not None:
+            data, _ = stream.read(chunk)
+            samples = np.frombuffer(bytes(data), dtype="<i2").copy()
+            for utterance in endpointer.feed(Audio(samples, ASR_RATE)):
                 heard = recognizer.transcribe(utterance)
                 shown = heard.text or f"(not understood: {heard.rejected or '...'})"
                 print(f"{PROMPT}{shown}")

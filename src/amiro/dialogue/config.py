@@ -10,7 +10,7 @@ from pydantic import Field
 from amiro.core.config import Section
 from amiro.core.registry import backend_name
 from amiro.dialogue import backends as _backends  # noqa: F401 - registers the names
-from amiro.dialogue.asr import DEFAULT_LISTEN_REJECT_BELOW, DEFAULT_REJECT_BELOW
+from amiro.dialogue.asr import DEFAULT_REJECT_BELOW, LISTEN_REJECT_BELOW
 from amiro.dialogue.nlu import DEFAULT_THRESHOLD
 from amiro.dialogue.profiles import SpeakerProfile
 
@@ -25,10 +25,11 @@ class TtsConfig(Section):
 
 
 class AsrConfig(Section):
-    backend: Annotated[str, backend_name("asr")] = "pocketsphinx"
+    backend: Annotated[str, backend_name("asr")] = "whisper"
     grammar: Literal["nlu", "answers", "none"] = Field(
         default="nlu",
-        description="pocketsphinx search: JSGF from the NLU data, yes/no/later, or LM",
+        description="what commands are expected: the NLU's (pocketsphinx: its JSGF; whisper: "
+        "its prompt), yes/no/later, or anything (pocketsphinx's LM, no prompt)",
     )
     reject_below: float = Field(
         default=DEFAULT_REJECT_BELOW,
@@ -36,17 +37,34 @@ class AsrConfig(Section):
         le=1.0,
         description="commands with a lower confidence are rejected (heard as not understood)",
     )
-    listen_reject_below: float = Field(
-        default=DEFAULT_LISTEN_REJECT_BELOW,
+    listen_reject_below: float | None = Field(
+        default=None,
         ge=0.0,
         le=1.0,
-        description="the same for answers to the robot's questions (Listen, answers grammar)",
+        description="the same for answers to the robot's questions (Listen, answers grammar); "
+        "default: the backend's (pocketsphinx 0, others as reject_below)",
     )
     vosk_model: Path | None = None
-    sim_audio: bool = Field(
-        default=False,
-        description="in the simulator, voice English replies with espeak-ng and recognise them",
+    whisper_model: Path | None = Field(
+        default=None,
+        description="a CTranslate2 Whisper directory (small, medium ...); default: the "
+        "packaged Whisper base of the speech extra",
     )
+    whisper_threads: int = Field(default=2, ge=1, description="CPU threads for Whisper")
+    whisper_compute_type: Literal["int8", "int8_float32", "float32"] = "int8"
+    whisper_beam_size: int = Field(default=1, ge=1, le=10)
+    vocabulary: list[str] = Field(
+        default_factory=list,
+        description="names Whisper's prompt mentions besides the rooms and commands (the "
+        "household's names are added by the system)",
+    )
+
+    @property
+    def listen_threshold(self) -> float:
+        """``listen_reject_below``, else the backend's default for Listen."""
+        if self.listen_reject_below is not None:
+            return self.listen_reject_below
+        return LISTEN_REJECT_BELOW.get(self.backend, self.reject_below)
 
 
 class DialogueConfig(Section):
@@ -61,6 +79,12 @@ class DialogueConfig(Section):
         "stories.yml, stories.<lang>.yml) replacing amiro's files it holds",
     )
     words_per_second: float = Field(default=2.5, gt=0.0)
+    hearing: Literal["audio", "text-oracle"] = Field(  # the single-process simulator only
+        default="audio",
+        description="in the simulator: audio voices each resident's reply (espeak-ng, their "
+        "language) into the recogniser of their language; text-oracle hands the NLU the "
+        "reply's text (also the fallback, said once, without the speech extra)",
+    )
     tts: TtsConfig = Field(default_factory=TtsConfig)
     asr: AsrConfig = Field(default_factory=AsrConfig)
     profiles: dict[str, SpeakerProfile] = Field(default_factory=dict)

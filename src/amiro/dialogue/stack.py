@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import logging
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from amiro.core.clock import Clock
-from amiro.core.registry import create
+from amiro.core.config import ConfigError
+from amiro.core.registry import create, resolve
 from amiro.core.runtime import Runtime
 from amiro.dialogue.actions import Actions, Submit
 from amiro.dialogue.asr import ConfidenceGate, Recognizer
@@ -21,6 +24,8 @@ from amiro.dialogue.profiles import SpeakerProfile
 from amiro.dialogue.sources import Sources, offline_sources
 from amiro.dialogue.tts import Synthesizer
 from amiro.dialogue.understanding import Nlu
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -39,24 +44,35 @@ def make_synthesizer(cfg: DialogueConfig) -> Synthesizer:
 
 
 def make_recognizer(
-    cfg: DialogueConfig, grammar: str | None = None, lang: str = "en"
+    cfg: DialogueConfig, grammar: str | None = None, lang: str = "en", names: Iterable[str] = ()
 ) -> Recognizer:
     """The recogniser ``asr.backend`` names, its results gated by the configured confidence
-    threshold (the Listen one for the ``answers`` grammar)."""
+    threshold (the Listen one for the ``answers`` grammar); ``names`` (the household's) join
+    the configured vocabulary."""
     grammar = grammar or cfg.asr.grammar
-    recognizer: Recognizer = create("asr", cfg.asr.backend, cfg.asr, grammar, lang)
+    asr = cfg.asr
+    if names:
+        asr = asr.model_copy(update={"vocabulary": [*asr.vocabulary, *names]})
+    recognizer: Recognizer = create("asr", asr.backend, asr, grammar, lang)
     answers = grammar == "answers"
-    return ConfidenceGate(
-        recognizer, cfg.asr.listen_reject_below if answers else cfg.asr.reject_below
-    )
+    return ConfidenceGate(recognizer, cfg.asr.listen_threshold if answers else cfg.asr.reject_below)
+
+
+def text_hearing(cfg: DialogueConfig) -> DialogueConfig:
+    """The configuration with the text oracle for the simulated replies: a split deployment's
+    understanding answers a service call of a few seconds (``amiro deploy``), too short for
+    voicing and recognising a reply on a loaded 2-core machine, so only the single-process
+    system hears the simulated residents."""
+    return cfg.model_copy(update={"hearing": "text-oracle"})
 
 
 def build_understanding(
     cfg: DialogueConfig, profiles: dict[str, SpeakerProfile], clock: Clock | None = None
 ) -> tuple[Nlu, Understanding]:
     """The household's NLU (relative days dated on ``clock``), and what Listen tasks
-    understand replies with: the NLU on the heard text, the NLU behind simulated audio and
-    the ASR (``asr.sim_audio``), or the oracle when configured."""
+    understand replies with: the NLU behind simulated audio and the ASR (``hearing: audio``),
+    on the heard text (``text-oracle``), or the oracle intent labels when configured
+    (``nlu: oracle``)."""
     training = {str(k): v for k, v in cfg.training_data.items()}
     nlu = Nlu(cfg.nlu_threshold, training, profiles, clock)
     nlu.warm_up()
@@ -67,11 +83,22 @@ def build_understanding(
 def amiro_understanding(
     nlu: Nlu, cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
 ) -> Understanding:
-    """The household's NLU on the heard text, or behind simulated audio and the ASR."""
-    if cfg.asr.sim_audio:
-        recognizer = make_recognizer(cfg, grammar="answers")
-        return AudioLoopUnderstanding(nlu, make_synthesizer(cfg), recognizer, profiles)
-    return nlu
+    """The household's NLU behind simulated audio and the ASR, or on the heard text (the
+    text oracle, chosen or, said once, when the speech stack is not installed)."""
+    if cfg.hearing == "text-oracle":
+        return nlu
+    try:
+        resolve("asr", cfg.asr.backend)  # the speech extra, or a one-line ConfigError
+        synthesizer = make_synthesizer(cfg)
+    except ConfigError as exc:
+        log.warning("hearing: text oracle, not audio (%s)", exc)
+        return nlu
+    names = sorted(profiles)
+
+    def recognizer_for(lang: str) -> Recognizer:
+        return make_recognizer(cfg, "answers", lang, names)
+
+    return AudioLoopUnderstanding(nlu, synthesizer, recognizer_for, profiles)
 
 
 def oracle_understanding(

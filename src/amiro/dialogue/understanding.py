@@ -14,6 +14,7 @@ from functools import cache
 from pathlib import Path
 
 from amiro import __version__
+from amiro.core.cache import cache_dir
 from amiro.core.clock import Clock, SimClock
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
@@ -88,14 +89,6 @@ def sklearn_version() -> str:
     from sklearn import __version__ as version
 
     return str(version)
-
-
-def cache_dir() -> Path:
-    """``$AMIRO_CACHE``, else ``$XDG_CACHE_HOME/amiro``, else ``~/.cache/amiro``."""
-    if "AMIRO_CACHE" in os.environ:
-        return Path(os.environ["AMIRO_CACHE"])
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "amiro"
 
 
 class Nlu:

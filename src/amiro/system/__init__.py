@@ -35,7 +35,7 @@ from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.profiles import household_voices
-from amiro.dialogue.stack import Dialogue, build_dialogue
+from amiro.dialogue.stack import Dialogue, build_dialogue, text_hearing
 from amiro.environment.assembly import Environment, add_environment
 from amiro.environment.config import EnvironmentConfig
 from amiro.environment.rules import RulesNode
@@ -299,7 +299,7 @@ def _build_on_sim(cfg: SystemConfig, runtime: Runtime, kind: type[SimAdapter]) -
     initial_pose = None if cfg.navigation.start_place is None else sim.robot.true_pose
     navigation = _add_navigation(runtime, cfg, sim.world, initial_pose)
     senses = build_senses(runtime, cfg, sim, partial(SkeletonCamera, sim), lambda: navigation.pose)
-    return _assemble(cfg, runtime, lambda: adapter, sim.world, navigation, senses)
+    return _assemble(cfg, runtime, lambda: adapter, sim.world, navigation, senses, simulated=True)
 
 
 def _build_on_robot(cfg: SystemConfig, runtime: Runtime, adapter: type[RobotAdapter]) -> System:
@@ -376,8 +376,11 @@ def _assemble(
     world: World,
     navigation: MoveToNode,
     senses: Senses,
+    simulated: bool = False,
 ) -> System:
-    """The behaviours, the smart environment and the dialogue on the robot's modules."""
+    """The behaviours, the smart environment and the dialogue on the robot's modules.  Only
+    the simulator's residents are heard through ``dialogue.hearing``; a real robot's speech
+    comes recognised from its microphone, so no audio loop is built for it."""
     rooms = list(world.home.rooms)
     modules = senses.modules(runtime, world, navigation)
     layer = build_behavior_layer(runtime, cfg, modules)
@@ -393,7 +396,8 @@ def _assemble(
     environment = add_environment(runtime, rooms, cfg.environment, sensors, rules)
     sources = environment_sources(runtime, environment, rooms)
     voices = household_voices(cfg.people())
-    dialogue = build_dialogue(runtime, cfg.dialogue, voices, submit=layer.submit, sources=sources)
+    hearing = cfg.dialogue if simulated else text_hearing(cfg.dialogue)
+    dialogue = build_dialogue(runtime, hearing, voices, submit=layer.submit, sources=sources)
     modules.speech, modules.nlu = dialogue.speech, dialogue.nlu
     return System(
         cfg,

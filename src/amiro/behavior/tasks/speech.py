@@ -8,7 +8,10 @@ from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus
 from amiro.core import names
 from amiro.core.bus import Subscription
 from amiro.core.messages import SpeechHeard, String
+from amiro.dialogue.grammar import ANSWER_INTENTS
 from amiro.dialogue.phrases import phrase
+
+REPROMPT = "answer_reprompt"
 
 
 class TextParams(TaskParams):
@@ -84,8 +87,12 @@ class Listen(Task):
     """Wait for a spoken answer restricted to the expected intents (paper: Listen).
 
     params: ``expect`` (intents that mean success, default ``[affirm]``), ``timeout_s``
-    (default 10).  Any other understood answer, or silence until the timeout, is a failure.
-    The heard intent goes to the blackboard as ``last_intent``.
+    (default 10), ``reprompts`` (default 1).  A yes, no or later (or an expected intent)
+    ends the task: success when expected, else failure.  Anything else is no answer (speech
+    the recogniser rejected, a question, talk to someone else): the robot asks again
+    (phrase ``answer_reprompt``) up to ``reprompts`` times, then fails with the reason
+    ``no_answer``, as after silence until the timeout.  The heard intent goes to the
+    blackboard as ``last_intent``.
     """
 
     type_name = "Listen"
@@ -93,10 +100,13 @@ class Listen(Task):
     class Params(TaskParams):
         expect: tuple[str, ...] = ("affirm",)
         timeout_s: float = Field(10.0, ge=0)
+        reprompts: int = Field(1, ge=0)
 
     def start(self, ctx: TaskContext) -> None:
         p = self.bind(ctx, self.Params)
         self.expect = p.expect
+        self.timeout_s = p.timeout_s
+        self.reprompts = p.reprompts
         self.deadline = ctx.now() + p.timeout_s
         self.heard: list[SpeechHeard] = []
         self.sub: Subscription[SpeechHeard] | None = ctx.bus.subscribe(
@@ -109,18 +119,38 @@ class Listen(Task):
             self.sub = None
 
     def update(self, ctx: TaskContext) -> TaskStatus:
-        for heard in self.heard:
+        heard_now = list(self.heard)
+        self.heard.clear()  # the subscription appends to this list
+        for heard in heard_now:
             intent, confidence = ctx.need(ctx.modules.nlu, "nlu").intent(heard)
             ctx.blackboard["last_intent"] = intent
             self.detail = {"heard": heard.text, "intent": intent, "confidence": confidence}
             ctx.event("heard", text=heard.text, intent=intent, speaker=heard.speaker)
+            if intent in self.expect or intent in ANSWER_INTENTS:
+                self._close()
+                return TaskStatus.SUCCESS if intent in self.expect else TaskStatus.FAILURE
+            if self.reprompts > 0:
+                self._reprompt(ctx, heard)
+                return TaskStatus.RUNNING
+            self.detail["reason"] = "no_answer"
             self._close()
-            return TaskStatus.SUCCESS if intent in self.expect else TaskStatus.FAILURE
+            return TaskStatus.FAILURE
         if ctx.now() >= self.deadline:
             self.detail = {"reason": "no_answer"}
             self._close()
             return TaskStatus.FAILURE
         return TaskStatus.RUNNING
+
+    def _reprompt(self, ctx: TaskContext, heard: SpeechHeard) -> None:
+        """Not an answer: ask again, and listen as long again after the question."""
+        self.reprompts -= 1
+        lang = str(ctx.blackboard.get("lang", heard.lang))
+        text = phrase(REPROMPT, lang, ctx.blackboard)
+        addressee = heard.speaker or str(ctx.blackboard.get("person", ""))
+        duration = ctx.need(ctx.modules.speech, "speech").say(text, lang, REPROMPT, addressee)
+        ctx.bus.publish(names.DISPLAY, String(text))
+        self.deadline = ctx.now() + duration + self.timeout_s
+        ctx.event("reprompt", text=text, heard=heard.text, speaker=heard.speaker)
 
     def cancel(self, ctx: TaskContext) -> None:
         self._close()
