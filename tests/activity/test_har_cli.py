@@ -68,6 +68,12 @@ def test_evaluate_on_ntu_files_and_bench_give_the_contract_keys(
     assert code == 0 and report["files"] == 6
     assert {"cross_subject", "cross_view", "confusion", "missing_joints"} <= set(report)
     assert sum(map(sum, report["confusion"]["matrix"])) == 6
+    plots = tmp_path / "plots"
+    code, out, _ = _run(
+        capsys, "evaluate", "--ntu", str(tmp_path), "--model", model, "--out", str(plots)
+    )
+    assert code == 0 and f"confusion plot: {plots / 'har_confusion.png'}" in out
+    assert (plots / "har_confusion.png").stat().st_size > 10_000
     empty = tmp_path / "empty"
     empty.mkdir()
     assert _run(capsys, "evaluate", "--ntu", str(empty), "--model", model)[0] == 2

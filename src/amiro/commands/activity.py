@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from amiro.commands.support import add_command, add_group, emit_json
+from amiro.commands.support import add_command, add_group, emit_json, emit_report, out_dir
 
 if TYPE_CHECKING:
     from amiro.commands.support import Subcommands
@@ -82,6 +82,9 @@ def register(sub: Subcommands) -> None:
         "between trained models without looking at the test data)",
     )
     evaluate.add_argument("--seed", type=int, default=1000)
+    evaluate.add_argument(
+        "--out", type=Path, help="folder for the confusion plot (har_confusion.png)"
+    )
 
     read = add_command(cmds, "read", _read, help="parse one NTU RGB+D .skeleton file")
     read.add_argument("file", type=Path)
@@ -178,6 +181,7 @@ def _evaluate(args: argparse.Namespace) -> int:
         evaluate_real_sets,
         evaluate_synthetic,
         format_report,
+        plot_confusions,
     )
 
     model = ActivityModel(args.model)
@@ -189,11 +193,12 @@ def _evaluate(args: argparse.Namespace) -> int:
         )
     else:
         report = evaluate_synthetic(model, args.seed)
-    if args.json:
-        emit_json(report)
-    else:
-        print(format_report(report))
-    return 0
+    text = format_report(report)
+    if args.out is not None:
+        path = out_dir(args) / "har_confusion.png"
+        plot_confusions(report, path)
+        text += f"\n\nconfusion plot: {path}"
+    return emit_report(args, report, text)
 
 
 def _read(args: argparse.Namespace) -> int:

@@ -41,6 +41,7 @@ from amiro.evaluation.activity_real import (
     simulated_falls,
     stitch,
 )
+from amiro.evaluation.confusion_plot import Panel, plot_panels
 from amiro.robot.camera import Camera
 
 EVAL_FRAMES = 30  # 2 s at the model's 15 Hz
@@ -261,6 +262,30 @@ def format_confusion(labels: list[str], matrix: list[list[int]]) -> list[str]:
         label = f"{i:>2} {name}"
         lines.append(f"  {label:<{name_w + 1}}" + "".join(f"{v:>{width}d}" for v in row))
     return lines
+
+
+DATA_NAMES = {
+    "synthetic": "amiro's generated motion (cross-subject)",
+    "ntu": "NTU RGB+D files (all)",
+    "real": "real Kinect v1 sets",
+}
+
+
+def plot_confusions(report: dict[str, Any], path: Path) -> None:
+    """The confusion plot of a report: a panel per real set (its protocol named), or one."""
+    scored = report["sets"].values() if report["data"] == "real" else [report]
+    panels = [
+        Panel(
+            scores.get("protocol", DATA_NAMES[report["data"]]),
+            scores["confusion"]["labels"],
+            np.array(scores["confusion"]["matrix"]),
+        )
+        for scores in scored
+    ]
+    title = (
+        f"activity confusion, {DATA_NAMES[report['data']]} (rows: true class, share of its clips)"
+    )
+    plot_panels(panels, path, title)
 
 
 def format_report(report: dict[str, Any]) -> str:

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from amiro.evaluation.confusion_plot import Panel, plot_panels
+
 Confusion = dict[str, dict[str, int]]
 
 
@@ -46,33 +48,11 @@ def table(confusion: Confusion) -> str:
 
 def plot(report: dict[str, Any], path: Path, title: str) -> None:
     """A panel per language: row-normalised shares, the counts written in the cells."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    langs = list(report)
-    size = max(len(labels(report[lang]["confusion"])) for lang in langs)
-    fig, axes = plt.subplots(1, len(langs), figsize=(0.55 * size * len(langs) + 2, 0.55 * size + 2))
-    for ax, lang in zip(np.atleast_1d(axes), langs, strict=True):
-        names, counts = matrix(report[lang]["confusion"])
-        shares = counts / np.maximum(counts.sum(axis=1, keepdims=True), 1)
-        ax.imshow(shares, cmap="Blues", vmin=0.0, vmax=1.0)
-        for (i, j), n in np.ndenumerate(counts):
-            if n:
-                colour = "white" if shares[i, j] > 0.6 else "black"
-                ax.text(j, i, str(n), ha="center", va="center", fontsize=7, color=colour)
-        heads = [short(n) for n in names]
-        ax.set_xticks(range(len(names)), heads, rotation=60, ha="right", fontsize=8)
-        ax.set_yticks(range(len(names)), heads, fontsize=8)
-        ax.set_xlabel("predicted")
-        ax.set_ylabel("true")
-        r = report[lang]
+    panels = []
+    for lang, r in report.items():
+        names, counts = matrix(r["confusion"])
         scope = "" if r["in_scope_accuracy"] is None else f", in scope {r['in_scope_accuracy']:.1%}"
         oos = r["out_of_scope_rejection"]
         refused = "" if oos is None else f", oos refused {oos:.1%}"
-        ax.set_title(f"{lang} (n={r['n']}{scope}{refused})", fontsize=9)
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+        panels.append(Panel(f"{lang} (n={r['n']}{scope}{refused})", names, counts))
+    plot_panels(panels, path, title, short)
