@@ -42,14 +42,11 @@ SLAM_POSE = "/amiro/slam/pose"  # PoseStamped
 PATH = "/amiro/navigation/path"  # Path: the planned path
 GLOBAL_LOCALIZATION = "/global_localization"  # service, as ROS amcl's std_srvs/Empty
 MOVE_TO = "/amiro/navigation/move_to"  # action: MoveToGoal -> MoveToResult
-# ROS 2 only: MoveTo as Nav2's nav2_msgs/action/NavigateToPose (served, or called on a Nav2 robot)
-NAVIGATE_TO_POSE = "/navigate_to_pose"
 FORWARD = "/amiro/navigation/forward"  # action: drive straight a distance
 ROTATE = "/amiro/navigation/rotate"  # action: turn in place by an angle
 
 # --- perception and activity --------------------------------------------------------------
 PEOPLE = "/amiro/people"  # String (JSON): the people tracked
-HRI_PEOPLE = "/amiro/hri/people"  # People: another stack's ROS4HRI persons (perception hri)
 OBSERVATIONS = "/amiro/sim/observations"  # CameraObservations from the simulated head
 SKELETONS = "/amiro/sim/skeletons"  # Skeleton
 

@@ -23,7 +23,6 @@ from amiro.deploy.config import NodeConfig
 from amiro.deploy.dialogue import RemoteUnderstanding
 from amiro.deploy.health import HeartbeatNode, NotificationLedger, Watchdog
 from amiro.deploy.ledger_store import LedgerStore
-from amiro.deploy.nav2 import uses_nav2
 from amiro.deploy.people import TrackedPeoplePublisher, finder_tracker
 from amiro.deploy.sim_camera import SimCameraNode
 from amiro.deploy.tf import MapOdomNode, robot_frames
@@ -88,8 +87,7 @@ def build_sim_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
     sim = build_sim(runtime, cfg.sim)
-    if {names.MOVE_TO, names.NAVIGATE_TO_POSE} & set(node.serve_actions):
-        # navigation next to the robot, driven remotely (by amiro's edge, or any Nav2 client)
+    if names.MOVE_TO in node.serve_actions:  # navigation next to the robot, driven remotely
         add_navigation(runtime, cfg, sim.world)
     (rng_skeletons,) = runtime.rng.spawn(1)
     rendered = node.camera is not None
@@ -120,7 +118,7 @@ def build_edge_role(
     world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
     navigation: MoveToNode | NavigationState = (
         NavigationState(runtime.bus, pose_topic(cfg))
-        if names.MOVE_TO in node.call_actions or uses_nav2(cfg)
+        if names.MOVE_TO in node.call_actions
         else add_navigation(runtime, cfg, world)
     )
     feed = HeadSensorsFeed(
