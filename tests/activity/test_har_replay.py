@@ -20,7 +20,13 @@ from amiro.activity.skeleton import J
 from amiro.core.clock import SimClock
 from amiro.core.config import ConfigError
 from amiro.core.runtime import Runtime
-from amiro.sim.config import PoseSpec, ResidentSpec, SimConfig, SkeletonsSection
+from amiro.sim.config import (
+    REALISTIC_SKELETONS,
+    PoseSpec,
+    ResidentSpec,
+    SimConfig,
+    SkeletonsSection,
+)
 from amiro.sim.simulator import build_sim
 from amiro.sim.skeletons import SkeletonCamera
 from shared_data import shared_data
@@ -97,8 +103,9 @@ def test_the_sensor_jitters_loses_joints_and_is_pitched() -> None:
         return frames
 
     ideal = scene(SkeletonsSection(noise_m=0.0, dropout=0.0, pitch_deg=0.0))
-    sensed = scene(SkeletonsSection())  # the defaults: a real sensor
-    assert SkeletonsSection().pitch_deg >= 10 and SkeletonsSection().noise_m > 0
+    realistic = SkeletonsSection(**REALISTIC_SKELETONS)
+    sensed = scene(realistic)  # a real sensor
+    assert realistic.pitch_deg >= 10 and realistic.noise_m > 0
 
     def hip_width(frames: np.ndarray) -> np.ndarray:
         return np.linalg.norm(frames[:, J["HipLeft"]] - frames[:, J["HipRight"]], axis=-1)
@@ -113,6 +120,6 @@ def test_the_sensor_jitters_loses_joints_and_is_pitched() -> None:
         trunk = frames[:, J["SpineShoulder"]] - frames[:, J["SpineBase"]]
         return float(np.degrees(np.nanmedian(np.arctan2(trunk[:, 2], trunk[:, 1]))))
 
-    pitch = math.radians(SkeletonsSection().pitch_deg)
+    pitch = math.radians(realistic.pitch_deg)
     assert abs(tilt_deg(sensed) - tilt_deg(ideal)) > 10
     assert abs(tilt_deg(level(sensed, pitch)) - tilt_deg(ideal)) < 3

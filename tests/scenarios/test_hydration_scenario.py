@@ -5,11 +5,14 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 from typing import Any
 
 import pytest
+import yaml
 
 from amiro.scenarios.hydration import HydrationOptions, run_hydration, scenario_config
+from amiro.sim.config import REALISTIC_SKELETONS
 
 STEPS_DEFAULT = ["Search", "MoveTo", "Say", "Listen", "RecognizeActivity", "NotifyEnvironment"]
 
@@ -37,12 +40,18 @@ def test_default_run_completes_with_the_papers_steps(default_report: dict[str, A
     assert rep["sim_time_s"] > 0 and rep["wall_time_s"] > 0
 
 
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
 def test_the_model_sees_the_drinking_through_a_noisy_pitched_sensor(
-    default_report: dict[str, Any],
+    seed: int, tmp_path: Path
 ) -> None:
-    sensor = scenario_config(HydrationOptions(seed=1)).sim.skeletons
+    config = tmp_path / "sensor.yaml"
+    config.write_text(yaml.safe_dump({"sim": {"skeletons": REALISTIC_SKELETONS}}))
+    options = HydrationOptions(seed=seed, config_path=str(config))
+    sensor = scenario_config(options).sim.skeletons
     assert sensor.noise_m >= 0.01 and sensor.dropout > 0 and sensor.pitch_deg >= 10
-    (watch,) = [s for s in default_report["steps"] if s["task"] == "RecognizeActivity"]
+    report = run_hydration(options)
+    assert report["outcome"] == "completed"
+    (watch,) = [s for s in report["steps"] if s["task"] == "RecognizeActivity"]
     assert watch["result"] == "success" and watch["detail"]["activity"] == "drink_water"
 
 
