@@ -23,14 +23,14 @@ def _deployment(tmp_path: Path) -> Path:
         "role": "sim",
         "speed": 3.0,  # as the shipped deployment: a busy edge keeps pace
         "wait_for": ["amiro_edge", "amiro_cloud"],
-        "serve_actions": [names.MOVE_TO],
+        "serve_actions": [names.MOVE_TO, names.FORWARD],  # FORWARD: reframing to watch
         "publish": [*DEFAULT_PUBLISH["sim"], names.LOCALIZATION],  # the pose the edge reads
         "subscribe": ["/amiro/head/cmd", "/amiro/say"],  # /cmd_vel comes from local MoveTo
     }
     edge = {
         "role": "edge",
         "heartbeat_s": 0.5,
-        "call_actions": [names.MOVE_TO],
+        "call_actions": [names.MOVE_TO, names.FORWARD],
         "publish": [t for t in DEFAULT_PUBLISH["edge"] if t != "/cmd_vel"],
         "subscribe": [
             *(t for t in DEFAULT_SUBSCRIBE["edge"] if t != "/scan"),

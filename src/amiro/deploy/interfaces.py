@@ -9,6 +9,7 @@ from amiro.core.messages import SpeechHeard
 from amiro.deploy.behaviors import BehaviorFeedback, BehaviorGoal, BehaviorResult
 from amiro.deploy.dialogue import Understood
 from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToResult
+from amiro.navigation.primitives import ForwardGoal, PrimitiveFeedback, PrimitiveResult
 from amiro.ros2.interfaces import ActionSpec, ServiceSpec, action_spec, service_spec
 
 ACTIONS: dict[str, ActionSpec] = {
@@ -20,6 +21,13 @@ ACTIONS: dict[str, ActionSpec] = {
             MoveToFeedback,
             MoveToResult,
             lambda reason: MoveToResult(False, reason),
+        ),
+        action_spec(  # reframing for RecognizeActivity on an edge whose base is remote
+            names.FORWARD,
+            ForwardGoal,
+            PrimitiveFeedback,
+            PrimitiveResult,
+            lambda reason: PrimitiveResult(False, reason),
         ),
         action_spec(
             names.BEHAVIOR_RUN,
