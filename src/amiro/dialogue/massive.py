@@ -8,9 +8,10 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+from typing import Any
 
 from amiro.core.config import ConfigError
-from amiro.dialogue.nlu_eval import Labelled, read_jsonl
+from amiro.dialogue.nlu_eval import Labelled, read_jsonl, read_records
 from amiro.dialogue.schema import OUT_OF_SCOPE
 
 LOCALES = {"en": "en-US", "fr": "fr-FR", "ro": "ro-RO"}
@@ -52,22 +53,16 @@ def is_massive_record(line: str) -> bool:
 
 def read_massive(path: Path) -> list[Labelled]:
     """The scored records of a MASSIVE jsonl file in amiro's labels (unknown locales skipped)."""
-    if not path.is_file():
-        raise ConfigError(f"{path}: no such file")
     lang_of = {locale: lang for lang, locale in LOCALES.items()}
-    rows: list[Labelled] = []
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-        if not line.strip():
-            continue
-        try:
-            obj = json.loads(line)
-            lang = lang_of.get(str(obj["locale"]))
-            label = mapped(str(obj.get("scenario", "")), str(obj["intent"]))
-            text = str(obj["utt"])
-        except (json.JSONDecodeError, KeyError, TypeError) as exc:
-            raise ConfigError(f"{path}:{number}: not a MASSIVE record ({exc})") from None
-        if lang is not None and label is not None:
-            rows.append(Labelled(lang, text, label[0], dict(label[1])))
+
+    def scored(obj: dict[str, Any]) -> Labelled | None:
+        lang = lang_of.get(str(obj["locale"]))
+        label = mapped(str(obj.get("scenario", "")), str(obj["intent"]))
+        if lang is None or label is None:
+            return None
+        return Labelled(lang, str(obj["utt"]), label[0], dict(label[1]))
+
+    rows = read_records(path, scored, "a MASSIVE record")
     if not rows:
         raise ConfigError(f"{path}: no scored MASSIVE records in en-US, fr-FR or ro-RO")
     return rows

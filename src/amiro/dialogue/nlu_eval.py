@@ -28,7 +28,11 @@ class Labelled:
     entities: dict[str, str]
 
 
-def read_jsonl(path: Path) -> list[Labelled]:
+def read_records(
+    path: Path, parse: Callable[[dict[str, Any]], Labelled | None], what: str
+) -> list[Labelled]:
+    """The rows ``parse`` makes of a JSON-lines file's records (None: a record it skips);
+    blank lines are skipped, a record it cannot read is a one-line error naming its line."""
     if not path.is_file():
         raise ConfigError(f"{path}: no such file")
     rows: list[Labelled] = []
@@ -36,17 +40,25 @@ def read_jsonl(path: Path) -> list[Labelled]:
         if not line.strip():
             continue
         try:
-            obj = json.loads(line)
-            rows.append(
-                Labelled(
-                    check_language(str(obj["lang"])),
-                    str(obj["text"]),
-                    str(obj["intent"]),
-                    {str(k): str(v) for k, v in (obj.get("entities") or {}).items()},
-                )
-            )
+            row = parse(json.loads(line))
         except (json.JSONDecodeError, KeyError, TypeError, AttributeError) as exc:
-            raise ConfigError(f"{path}:{number}: not a labelled utterance ({exc})") from None
+            raise ConfigError(f"{path}:{number}: not {what} ({exc})") from None
+        if row is not None:
+            rows.append(row)
+    return rows
+
+
+def _labelled(obj: dict[str, Any]) -> Labelled:
+    return Labelled(
+        check_language(str(obj["lang"])),
+        str(obj["text"]),
+        str(obj["intent"]),
+        {str(k): str(v) for k, v in (obj.get("entities") or {}).items()},
+    )
+
+
+def read_jsonl(path: Path) -> list[Labelled]:
+    rows = read_records(path, _labelled, "a labelled utterance")
     if not rows:
         raise ConfigError(f"{path}: no utterances")
     return rows
