@@ -90,8 +90,8 @@ def test_dashboard_in_a_real_browser(site: tuple[Running, str], page: Page) -> N
     page.fill("#chat-input", "go to the kitchen")
     page.click("#chat-send")
     expect(page.locator("#chat-reply")).to_contain_text("I am going to kitchen")
-    page.wait_for_function(  # queued behind the hydration behaviour, or running
-        "() => /go_to/.test(document.querySelector('#queue').textContent"
+    page.wait_for_function(  # queued behind hydration, or running (English name)
+        "() => /go to/.test(document.querySelector('#queue').textContent"
         " + document.querySelector('#current-task').textContent)",
         polling=200,
         timeout=10_000,

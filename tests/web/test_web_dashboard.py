@@ -197,11 +197,12 @@ def test_the_timeline_shows_each_step_of_a_hydration_run(
     finished = page.locator(f"#timeline li[data-type=graph_finished][data-graph='{run.id}']")
     expect(finished).to_contain_text(run.outcome or "", timeout=10_000)
     assert len(run.records) >= 5  # search, approach, remind, listen, watch, ack...
+    english = page.evaluate("async () => (await import('/static/i18n.js')).strings('en')")
     for record in run.records:
         started = page.locator(f"#timeline li[data-type=task_started][data-task={record.task_id}]")
         ended = page.locator(f"#timeline li[data-type=task_finished][data-task={record.task_id}]")
-        expect(started.first).to_contain_text(record.type)
-        expect(ended.first).to_contain_text(record.type)
+        expect(started.first).to_contain_text(english[f"w_{record.type}"])
+        expect(ended.first).to_contain_text(english[f"w_{record.type}"])
     said = running.served.gateway.transcript[0]["text"]
     expect(page.locator("#timeline li[data-type=say]").first).to_contain_text(said)
     expect(page.locator("#timeline li[data-type=notification]").first).to_contain_text("hydration")
@@ -222,11 +223,14 @@ def test_every_string_in_french_and_romanian(page: Page, lang: str, estop: str, 
           const untranslated = en.filter(k => !other[k]);
           const wrong = [...document.querySelectorAll('[data-i18n]')]
             .filter(e => e.textContent !== other[e.dataset.i18n]).map(e => e.dataset.i18n);
-          return {untranslated, wrong, html: document.documentElement.lang};
+          const tasks = [...document.querySelectorAll('[data-task-type]')];
+          const taskNames = tasks.length > 0
+            && tasks.every(e => e.textContent === other[`w_${e.dataset.taskType}`]);
+          return {untranslated, wrong, taskNames, html: document.documentElement.lang};
         }""",
         lang,
     )
-    assert missing == {"untranslated": [], "wrong": [], "html": lang}
+    assert missing == {"untranslated": [], "wrong": [], "taskNames": True, "html": lang}
     expect(page.locator("#timeline")).to_contain_text(say)
     expect(page.locator("#lights-kitchen")).to_contain_text(":")
     if lang == "fr":

@@ -65,21 +65,21 @@ function changed(key, value) {
 function renderBehaviours(state) {
   const cur = state.current;
   $("current-task").textContent = cur
-    ? `${cur.name} › ${cur.type} (${cur.task}), ${t("priority")} ${cur.priority}, ${t("started_for", { s: Math.max(0, state.t - cur.started_s).toFixed(0) })}`
+    ? `${word(cur.name)} › ${word(cur.type)} (${cur.task}), ${t("priority")} ${cur.priority}, ${t("started_for", { s: Math.max(0, state.t - cur.started_s).toFixed(0) })}`
     : t("nothing");
   const steps = cur && cur.progress ? cur.progress : null;
   if (changed("progress", [steps, cur && cur.task, lang()])) {
     const items = steps ? [
-      ...steps.done.map((s) => el("li", `${s.result === "success" ? "✔" : "✘"} ${s.type}`, { class: `step ${s.result === "success" ? "done" : "failed"}`, "data-task": s.task })),
-      el("li", `▶ ${cur.type}`, { class: "step now", "data-task": cur.task }),
-      ...steps.ahead.map((s) => el("li", s.type, { class: "step ahead", "data-task": s.task })),
+      ...steps.done.map((s) => el("li", `${s.result === "success" ? "✔" : "✘"} ${word(s.type)}`, { class: `step ${s.result === "success" ? "done" : "failed"}`, "data-task": s.task })),
+      el("li", `▶ ${word(cur.type)}`, { class: "step now", "data-task": cur.task }),
+      ...steps.ahead.map((s) => el("li", word(s.type), { class: "step ahead", "data-task": s.task })),
     ] : [];
     $("progress").replaceChildren(...items);
   }
   const queue = state.queue || [];
   if (changed("queue", [queue, lang()])) {
     $("queue").replaceChildren(...(queue.length
-      ? queue.map((q) => el("li", `${q.name} › ${q.type || q.task} (${t("priority")} ${q.priority})`))
+      ? queue.map((q) => el("li", `${word(q.name)} › ${q.type ? word(q.type) : q.task} (${t("priority")} ${q.priority})`))
       : [el("li", t("queue_empty"), { class: "muted" })]));
   }
 }
@@ -91,6 +91,7 @@ const NARRATED = new Set(["notification", "graph_submitted", "graph_suspended", 
 
 export function narrate(ev) {
   const v = { ...ev };
+  if (ev.task_type) v.task_type = word(ev.task_type);
   if (ev.type === "task_finished") {
     return t(ev.result === "success" ? "ev_task_success" : "ev_task_failure", { ...v, result: word(ev.result) });
   }
@@ -305,6 +306,7 @@ function onLanguage(next) {
   fillChatUsers();
   if (shown) show(...shown);
   for (const h of document.querySelectorAll("[data-room-name]")) h.textContent = word(h.dataset.roomName);
+  for (const b of document.querySelectorAll("[data-task-type]")) b.textContent = word(b.dataset.taskType);
   for (const b of document.querySelectorAll("[data-scenario]")) b.textContent = `${word(b.dataset.scenario)} · ${scenarios[b.dataset.scenario]}`;
   if (healthInfo) fillMetrics();
   if (map) { render(last); loadHealth().catch((e) => show(e.message)); }
@@ -330,9 +332,9 @@ async function main() {
     return b;
   }));
   $("tasks").replaceChildren(...beh.task_types.map((type) => {
-    const b = el("button", type, { id: `task-${type}`, type: "button" });
+    const b = el("button", word(type), { id: `task-${type}`, type: "button", "data-task-type": type });
     b.addEventListener("click", async () => {
-      try { const r = await api("/tasks", { type, params: TASK_DEFAULTS[type] || {} }); show("task_queued", { type, run: r.run }); } catch (e) { show(e.message); }
+      try { const r = await api("/tasks", { type, params: TASK_DEFAULTS[type] || {} }); show("task_queued", { type: word(type), run: r.run }); } catch (e) { show(e.message); }
     });
     return b;
   }));
