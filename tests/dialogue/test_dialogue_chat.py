@@ -1,5 +1,5 @@
 """``amiro chat``: a banner saying how to quit, then only the robot's replies (``--debug``
-adds what was understood), in the chosen language, with the user's own DM folder."""
+adds what was understood), all in the chosen language, with the user's own DM folder."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def test_chat_shows_only_the_replies_and_stops_at_goodbye(
 ) -> None:
     code, replies, other, err = _chat(["--lang", "fr"], SAID, monkeypatch, capsys)
     assert code == 0
-    assert "Ctrl-D" in err and "(fr)" in err
+    assert "Ctrl-D" in err and "(français)" in err and "dites « au revoir »" in err  # in French
     assert other == []  # no intent, no entities
     assert replies == [
         "Bonjour ! Comment puis-je vous aider ?",

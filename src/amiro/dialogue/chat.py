@@ -12,6 +12,7 @@ from amiro.core.config import ConfigError
 from amiro.dialogue.actions import Actions
 from amiro.dialogue.domain import load_dm
 from amiro.dialogue.manager import DialogueManager
+from amiro.dialogue.phrases import phrase
 from amiro.dialogue.sources import offline_sources
 from amiro.dialogue.understanding import Nlu
 
@@ -45,18 +46,16 @@ def _spoken(lang: str) -> Iterator[str]:
     endpointer = SileroEndpointer()
     chunk = ASR_RATE // 10
     with sounddevice.RawInputStream(samplerate=ASR_RATE, channels=1, dtype="int16") as stream:
-        print("(listening; Ctrl-C to stop)", file=sys.stderr)
+        print(phrase("chat_listening", lang), file=sys.stderr)
         while True:
             data, _ = stream.read(chunk)
             samples = np.frombuffer(bytes(data), dtype="<i2").copy()
             for utterance in endpointer.feed(Audio(samples, ASR_RATE)):
                 heard = recognizer.transcribe(utterance)
-                shown = heard.text or f"(not understood: {heard.rejected or '...'})"
+                reason = heard.rejected or "..."
+                shown = heard.text or phrase("chat_not_understood", lang, {"reason": reason})
                 print(f"{PROMPT}{shown}")
                 yield heard.text
-
-
-BANNER = "amiro chat ({lang}): talk to the robot; say goodbye, or Ctrl-D / Ctrl-C to quit."
 
 
 def run_chat(lang: str, voice: bool, debug: bool = False, dm: Path | None = None) -> int:
@@ -65,7 +64,7 @@ def run_chat(lang: str, voice: bool, debug: bool = False, dm: Path | None = None
     domain, stories = load_dm(dm)
     nlu = Nlu()
     nlu.model(lang)  # train before the first prompt
-    print(BANNER.format(lang=lang), file=sys.stderr)
+    print(phrase("chat_banner", lang), file=sys.stderr)
     got: list[tuple[str, dict[str, object]]] = []
     actions = Actions(offline_sources(), lambda k, p: got.append((k, p)))
     manager = DialogueManager(nlu, domain, actions, stories=stories)
