@@ -3,9 +3,13 @@ loopback): amiro's MoveTo as ``amiro_interfaces/action/MoveTo``."""
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -21,6 +25,7 @@ from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToResult
 from amiro.ros2.actions import ActionExporter, RemoteActionServer
 from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.context import RosContext
+from amiro.ros2.env import ros_environment
 
 Handle = GoalHandle[MoveToGoal, MoveToFeedback, MoveToResult]
 
@@ -195,3 +200,43 @@ def test_a_goal_request_never_starves_the_servers_ros_messages(split: Split) -> 
     assert heard, "the server's ROS 2 messages were starved"
     assert split.spin_until(lambda: handle.done, 20.0)
     assert handle.status is GoalStatus.SUCCEEDED
+
+
+def test_a_killed_server_is_noticed_by_its_liveliness(domain_id: int) -> None:
+    """SIGKILL leaves no goodbye; DDS drops the participant only when its lease ends, but the
+    exporter's status writer offers a short liveliness lease: the goal aborts on that, well
+    before the caller's own timeout (60 s here) could end it."""
+    script = Path(__file__).parent / "scripts" / "endless_move_to.py"
+    server = subprocess.Popen(
+        [sys.executable, str(script), str(domain_id)],
+        env={**os.environ, **ros_environment(domain_id)},
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    ros = RosContext("amiro_test_caller", domain_id)
+    runtime = Runtime(SimClock(speed=1.0))
+    runtime.add(Ros2Bridge(ros))
+    remote = runtime.add(RemoteActionServer(ros, MoveToCodec(), timeout_s=60.0))
+    runtime.start()
+    try:
+        assert server.stdout is not None and server.stdout.readline().strip() == "serving"
+        handle: Handle = runtime.bus.send_goal(names.MOVE_TO, MoveToGoal(Pose2D(5.0, 0, 0)))
+        deadline = time.monotonic() + 60.0
+        while handle.feedback is None and time.monotonic() < deadline:
+            runtime.spin_for(0.02)
+        assert handle.feedback is not None
+        server.kill()
+        server.wait(timeout=30)
+        deadline = time.monotonic() + 50.0
+        while not handle.done and time.monotonic() < deadline:
+            runtime.spin_for(0.02)
+    finally:
+        if server.poll() is None:
+            server.kill()
+        runtime.stop()
+        ros.close()
+    assert handle.status is GoalStatus.ABORTED
+    assert handle.result is not None
+    assert handle.result.reason.startswith("server_lost")
+    assert "stopped asserting liveliness" in handle.result.reason
+    assert remote.lost and remote.pending == {}

@@ -35,6 +35,25 @@ STATUS_CODES = {
     GoalStatus.ABORTED: 6,
 }
 FROM_CODE = {code: status for status, code in STATUS_CODES.items()}
+# An exporter's status writer offers this liveliness lease; a caller watching it hears of a
+# SIGKILLed server within it, where DDS drops the participant only when its own lease ends.
+LIVELINESS_S = 2.0
+
+
+def status_qos() -> Any:
+    """The action status topic's default QoS with an automatic liveliness lease: compatible
+    with every client (they request an infinite lease), watched by :class:`RemoteActionServer`."""
+    from rclpy.duration import Duration
+    from rclpy.qos import LivelinessPolicy, QoSProfile, qos_profile_action_status_default
+
+    return QoSProfile(  # type: ignore[no-untyped-call]
+        history=qos_profile_action_status_default.history,
+        depth=qos_profile_action_status_default.depth,
+        reliability=qos_profile_action_status_default.reliability,
+        durability=qos_profile_action_status_default.durability,
+        liveliness=LivelinessPolicy.AUTOMATIC,
+        liveliness_lease_duration=Duration(seconds=LIVELINESS_S),
+    )
 
 
 def _rclpy_action() -> Any:
@@ -82,6 +101,7 @@ class ActionExporter(WireEndpoint):
             goal_callback=self._on_goal_request,
             handle_accepted_callback=self._on_accepted,
             cancel_callback=self._on_cancel_request,
+            status_pub_qos_profile=status_qos(),
         )
 
     def on_stop(self) -> None:
@@ -110,7 +130,10 @@ class ActionExporter(WireEndpoint):
         _msg, goal = self._decoded.pop(id(ros_goal.request))
         from rclpy.impl.implementation_singleton import rclpy_implementation
 
-        # executing from now on, without an execute coroutine (see the module's docstring)
+        # Executing from now on, without an execute coroutine.  rclpy has no public way:
+        # ServerGoalHandle.execute() also schedules the execute callback at once, and one
+        # that waits for the bus goal is re-run by every executor turn, taking nothing else
+        # (see the module's docstring and test_a_goal_request_never_starves_...).
         ros_goal._update_state(rclpy_implementation.GoalEvent.EXECUTE)
         served = _Served(goal, self.now(), ros_goal)
         self.active[bytes(ros_goal.goal_id.uuid)] = served
@@ -202,14 +225,17 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
         self.check_period = check_period
         self.pending: dict[int, _Pending] = {}
         self.server_heard: float | None = None  # runtime time the server was last seen
+        self.lost = False  # the server's status writer lost its liveliness (killed)
         self._count = 0
         self._client: Any = None
+        self._watch: Any = None
 
     def on_start(self) -> None:
         super().on_start()
         self._client = _rclpy_action().ActionClient(
             self.ros.node, self.codec.action, self.codec.ros_name
         )
+        self._watch_liveliness()
         self.create_action_server(self.interface, self)
         self.create_timer(self.check_period, self._check)
 
@@ -222,11 +248,29 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
         if self._client is not None:
             self._client.destroy()
             self._client = None
+        if self._watch is not None:
+            self.ros.node.destroy_subscription(self._watch)
+            self._watch = None
+
+    def _watch_liveliness(self) -> None:
+        """A second reader of the status topic, only for its liveliness events (a server
+        that is not amiro's offers no lease: the QoS do not match and nothing is heard)."""
+        from rclpy.event_handler import SubscriptionEventCallbacks
+
+        self._watch = self.ros.node.create_subscription(
+            self.ros.types.message_class("action_msgs/msg/GoalStatusArray"),
+            f"{self.codec.ros_name}/_action/status",
+            lambda _msg: None,
+            status_qos(),
+            event_callbacks=SubscriptionEventCallbacks(
+                liveliness=lambda info: self._queue("liveliness", (0, info))
+            ),
+        )
 
     @property
     def available(self) -> bool:
         """Whether the ROS 2 server is on the graph now (a caller may route elsewhere)."""
-        return self._client is not None and bool(self._client.server_is_ready())
+        return self._client is not None and not self.lost and bool(self._client.server_is_ready())
 
     # --- the local bus's side -------------------------------------------------------------
     def execute(self, handle: AnyHandle) -> None:
@@ -243,7 +287,7 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
 
     def _send(self, key: int) -> None:
         pending = self.pending[key]
-        if pending.sent or not self._client.server_is_ready():
+        if pending.sent or not self.available:
             return  # not discovered yet: the check timer tries again
         pending.sent, pending.since = True, self.now()
         future = self._client.send_goal_async(
@@ -256,6 +300,9 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
     # --- what rclpy queued ----------------------------------------------------------------
     def handle(self, kind: str, msg: Any) -> None:
         key, data = msg
+        if kind == "liveliness":
+            self._on_liveliness(data)
+            return
         pending = self.pending.get(key)
         if pending is None:
             return  # a goal we gave up on
@@ -290,8 +337,17 @@ class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
         }[status]
         end(result)
 
+    def _on_liveliness(self, info: Any) -> None:
+        if info.alive_count > 0:
+            self.lost = False
+        elif info.not_alive_count_change > 0:  # lost, not a writer deleted cleanly
+            self.lost = True
+            lost = f"{self.codec.ros_name} stopped asserting liveliness ({LIVELINESS_S:g} s lease)"
+            for key in [k for k, p in self.pending.items() if p.sent]:
+                self._fail(key, f"server_lost: {lost}")
+
     def _check(self) -> None:
-        now, ready = self.now(), self._client.server_is_ready()
+        now, ready = self.now(), self.available
         if ready:
             self.server_heard = now
         for key in list(self.pending):
