@@ -150,10 +150,10 @@ def _run_process(
     endpoints += [
         runtime.add(RemoteActionServer(ros, codec, node.action_timeout_s)) for codec in called
     ]
-    if node.role == "edge":  # the people perception tracks, on ROS4HRI as well
+    if node.role == "edge" and node.hri:  # the people perception tracks, on ROS4HRI too
         runtime.add(HriPublisher(ros))
-        if cfg.perception.backend == "hri":  # or the people another HRI stack tracks
-            runtime.add(HriListener(ros, names.HRI_PEOPLE))
+    if node.role == "edge" and cfg.perception.backend == "hri":  # another HRI stack's people
+        runtime.add(HriListener(ros, names.HRI_PEOPLE))
     if node.role == "edge" and uses_nav2(cfg):  # MoveTo and primitives: the robot's Nav2
         world = World.load(home_path(cfg), cfg.sim.resolution)
         endpoints += add_nav2_navigation(runtime, ros, cfg, world, node.action_timeout_s)
