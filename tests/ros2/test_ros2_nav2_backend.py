@@ -25,12 +25,13 @@ from amiro.core.config import ConfigError
 from amiro.core.messages import Pose2D
 from amiro.core.runtime import Runtime
 from amiro.deploy.cloud import pose_topic
-from amiro.deploy.codecs import NavigateToPoseCodec, nav2_reason
+from amiro.deploy.codecs import MoveToCodec, NavigateToPoseCodec, nav2_reason
 from amiro.deploy.config import DEFAULT_PUBLISH, DEFAULT_SUBSCRIBE
 from amiro.deploy.launch import Launcher, load_deployment
 from amiro.deploy.nav2 import Nav2Primitives, add_nav2_navigation
 from amiro.home.world import World, default_home_path
 from amiro.navigation.config import NavigationConfig
+from amiro.navigation.move_to import MoveToFeedback
 from amiro.navigation.primitives import ForwardGoal, RotateGoal
 from amiro.navigation.stack import build_navigation
 from amiro.ros2.actions import RemoteActionServer
@@ -68,6 +69,18 @@ def test_nav2_result_codes_map_to_move_to_reasons() -> None:
     assert nav2_reason(701, "") == "timeout"  # Spin TIMEOUT
     with pytest.raises(ConfigError, match="backend: nav2"):
         build_navigation(None, {}, NavigationConfig(backend="nav2"))  # type: ignore[arg-type]
+
+
+def test_move_tos_recoveries_are_nav2s_number_of_recoveries() -> None:
+    feedback = MoveToFeedback(Pose2D(1.0, 2.0, 0.5), 3.25, recoveries=2)
+    codec = NavigateToPoseCodec()
+    msg = codec.feedback_to_ros(feedback, elapsed_s=4.5)
+    assert msg.number_of_recoveries == 2 and msg.distance_remaining == 3.25
+    assert (msg.navigation_time.sec, msg.navigation_time.nanosec) == (4, 500_000_000)
+    back = codec.feedback_from_ros(msg)
+    assert back.recoveries == 2 and back.pose.x == 1.0 and abs(back.pose.theta - 0.5) < 1e-9
+    ours = MoveToCodec()
+    assert ours.feedback_from_ros(ours.feedback_to_ros(feedback, 0.0)) == feedback
 
 
 def test_an_aborted_nav2_goal_takes_move_tos_failure_edge(domain_id: int) -> None:

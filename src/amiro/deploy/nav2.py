@@ -27,7 +27,7 @@ from amiro.deploy.codecs import NavigateToPoseCodec
 from amiro.deploy.nav2_behaviors import BackUpCodec, DriveOnHeadingCodec, SpinCodec
 from amiro.home.world import World
 from amiro.navigation.move_to import MoveToGoal, MoveToResult
-from amiro.navigation.primitives import PrimitiveFeedback, PrimitiveResult
+from amiro.navigation.primitives import PrimitiveFeedback, PrimitiveResult, valid_goal
 from amiro.ros2.actions import RemoteActionServer
 from amiro.ros2.context import RosContext
 from amiro.system import SystemConfig
@@ -53,8 +53,7 @@ class _Primitive(ActionServer[Any, PrimitiveFeedback, PrimitiveResult]):
         self.owner, self.rotate = owner, rotate
 
     def accept(self, goal: Any) -> bool:
-        value = goal.angle if self.rotate else goal.distance
-        return isinstance(value, int | float) and math.isfinite(value)
+        return valid_goal(goal, self.rotate)
 
     def execute(self, handle: Handle) -> None:
         self.owner.begin(handle, self.rotate)
