@@ -51,6 +51,7 @@ def test_a_plain_nav2_client_drives_amiro_and_cancels_it(domain_id: int) -> None
     assert params["role"][1:] == [True, "sim"]
     assert params["navigation.backend"][1:] == [True, "amiro"] and params["role"][0]
     reached = got["first"]
+    print(json.dumps(got))  # the figures docs/ros2.md quotes
     assert reached["accepted"] and reached["succeeded"] and reached["error_code"] == 0
     assert reached["feedback"] > 5 and reached["frame"] == "map"
     assert reached["first_remaining_m"] > 3.0 and reached["last_remaining_m"] < 0.35
