@@ -21,7 +21,7 @@ from amiro.perception.config import PerceptionConfig
 from amiro.system import SystemConfig, build_system
 
 FIELDS = [
-    ("perception.backend", "camera, oracle, sim"),
+    ("perception.backend", "camera, hri, oracle, sim"),
     ("perception.faces.backend", "dlib, sim"),
     ("perception.camera.detector", "hog, onnx"),
     ("navigation.localization", "amcl, oracle"),

@@ -43,7 +43,7 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> BuildResult:
 def test_package_dependencies_come_from_the_fields() -> None:
     package = load_package("tf2_msgs")
     assert package.dependencies == ("geometry_msgs",)
-    assert [p.as_posix() for p in package.messages] == ["msg/TFMessage.msg"]
+    assert [p.as_posix() for p in package.interfaces] == ["msg/TFMessage.msg"]
 
 
 def test_build_lays_out_an_installed_ros_package(built: BuildResult) -> None:
@@ -169,7 +169,8 @@ def test_any_shipped_style_package_builds(tmp_path: Path) -> None:
 
 
 def test_unknown_package_is_one_line_and_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
-    with pytest.raises(ConfigError, match=r"no interface package 'nope'.*shipped: tf2_msgs"):
+    shipped = "amiro_interfaces, hri_msgs, nav2_msgs, tf2_msgs"
+    with pytest.raises(ConfigError, match=rf"no interface package .nope.*shipped: {shipped}"):
         load_package("nope")
     assert main(["--package", "nope"]) == 2
     err = capsys.readouterr().err

@@ -224,6 +224,12 @@ class BehaviorEngine(Node):
         self._end_graph(run, "cancelled")
         return True
 
+    def running_task(self, run_id: str) -> Task | None:
+        """The task a run is executing now (None while it waits or once it has ended), for
+        a caller that reports that task's own progress."""
+        active = self._active
+        return active.task if active is not None and active.run.id == run_id else None
+
     @property
     def idle(self) -> bool:
         return self._active is None and not self._queue

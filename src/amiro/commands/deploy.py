@@ -22,6 +22,12 @@ def register(sub: Subcommands) -> None:
         help="the simulated home as a ROS 2 node: /scan, /odom, /map, /clock; drive it on /cmd_vel",
     )
     sim.add_argument("--ros2", action="store_true", help="publish and subscribe over ROS 2")
+    sim.add_argument(
+        "--navigation",
+        action="store_true",
+        help="also run amiro's navigation, serving Nav2's /navigate_to_pose "
+        "(nav2_msgs/action/NavigateToPose) and amiro's own MoveTo action",
+    )
     sim.add_argument("--speed", type=float, default=1.0, help="sim seconds per real second")
     sim.add_argument("--duration", type=float, default=None, help="stop after this sim time (s)")
     sim.add_argument(
@@ -79,6 +85,7 @@ def _with_domain(data: dict[str, Any], domain_id: int | None) -> dict[str, Any]:
 
 
 def _sim(args: argparse.Namespace) -> int:
+    from amiro.core import names
     from amiro.core.config import ConfigError, parse
     from amiro.deploy.config import NodeConfig
     from amiro.deploy.process import run_process
@@ -86,6 +93,8 @@ def _sim(args: argparse.Namespace) -> int:
     if not args.ros2:
         raise ConfigError("amiro sim only runs as a ROS 2 node for now: add --ros2")
     data: dict[str, Any] = {"role": "sim", "speed": args.speed, "duration_s": args.duration}
+    if args.navigation:
+        data["serve_actions"] = [names.MOVE_TO, names.NAVIGATE_TO_POSE]
     if args.camera_rate != 0:
         data["camera"] = {"rate_hz": args.camera_rate, **_image_size(args.camera_size)}
     node = parse(NodeConfig, _with_domain(data, args.domain_id), "amiro sim")

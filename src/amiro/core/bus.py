@@ -304,6 +304,12 @@ class Bus:
     def has_action(self, name: str) -> bool:
         return name in self._actions
 
+    def accepts(self, name: str, goal: Any) -> bool:
+        """Whether the server of ``name`` would accept ``goal``: its ``accept`` only, nothing
+        runs (a bridge answers a goal request from another process with it)."""
+        server = self._actions.get(name)
+        return server is not None and server.accept(goal)
+
     def send_goal(self, name: str, goal: G) -> GoalHandle[G, Any, Any]:
         server = self._actions.get(name)
         if server is None:

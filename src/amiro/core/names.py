@@ -42,11 +42,19 @@ SLAM_POSE = "/amiro/slam/pose"  # PoseStamped
 PATH = "/amiro/navigation/path"  # Path: the planned path
 GLOBAL_LOCALIZATION = "/global_localization"  # service, as ROS amcl's std_srvs/Empty
 MOVE_TO = "/amiro/navigation/move_to"  # action: MoveToGoal -> MoveToResult
+# ROS 2 only: MoveTo as Nav2's nav2_msgs/action/NavigateToPose (served, or called on a Nav2 robot)
+NAVIGATE_TO_POSE = "/navigate_to_pose"
+# ROS 2 only: a Nav2 robot's behaviour server (nav2_msgs Spin, BackUp, DriveOnHeading), which
+# navigation.backend nav2 calls for the primitives where the robot offers them
+NAV2_SPIN = "/spin"
+NAV2_BACKUP = "/backup"
+NAV2_DRIVE_ON_HEADING = "/drive_on_heading"
 FORWARD = "/amiro/navigation/forward"  # action: drive straight a distance
 ROTATE = "/amiro/navigation/rotate"  # action: turn in place by an angle
 
 # --- perception and activity --------------------------------------------------------------
 PEOPLE = "/amiro/people"  # String (JSON): the people tracked
+HRI_PEOPLE = "/amiro/hri/people"  # People: another stack's ROS4HRI persons (perception hri)
 OBSERVATIONS = "/amiro/sim/observations"  # CameraObservations from the simulated head
 SKELETONS = "/amiro/sim/skeletons"  # Skeleton
 
@@ -65,4 +73,6 @@ DEVICE_STATE = "/amiro/env/devices/state"  # DeviceState
 # --- behaviour ----------------------------------------------------------------------------
 EVENTS = "/amiro/events"  # BehaviorEvent
 BEHAVIOR_RUN = "/amiro/behavior/run"  # action: run a behaviour by kind
+SEARCH = "/amiro/behavior/search"  # action: the Search task on its own
+RECOGNIZE_ACTIVITY = "/amiro/behavior/recognize_activity"  # action: RecognizeActivity alone
 HEARTBEAT = "/amiro/heartbeat"  # String: a split deployment's liveness

@@ -138,6 +138,11 @@ class NodeConfig(Section):
         default=3.0, gt=0, description="a remote goal unheard of this long (sim s) aborts"
     )
     heartbeat_s: float = Field(default=1.0, gt=0)
+    hri: bool = Field(
+        default=False,
+        description="edge: also publish the people perception tracks on ROS4HRI (REP-155): "
+        "/humans/... topics and person_<id> / body_<id> frames on /tf",
+    )
     watch: dict[str, float] = Field(
         default_factory=dict, description="cloud: process name -> heartbeat timeout (s)"
     )

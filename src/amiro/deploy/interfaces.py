@@ -1,46 +1,39 @@
-"""The actions and services a split deployment offers over ROS 2, by name: the typed
-payloads each one carries on the wire."""
+"""The actions and services a split deployment offers over ROS 2, by name: the ROS 2 action
+type each action travels as, the typed payloads each service carries."""
 
 from __future__ import annotations
+
+from typing import Any
 
 from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.messages import SpeechHeard
-from amiro.deploy.behaviors import BehaviorFeedback, BehaviorGoal, BehaviorResult
+from amiro.deploy.codecs import (
+    BehaviorRunCodec,
+    ForwardCodec,
+    MoveToCodec,
+    NavigateToPoseCodec,
+    RecognizeActivityCodec,
+    SearchCodec,
+)
 from amiro.deploy.dialogue import Understood
-from amiro.navigation.move_to import MoveToFeedback, MoveToGoal, MoveToResult
-from amiro.navigation.primitives import ForwardGoal, PrimitiveFeedback, PrimitiveResult
-from amiro.ros2.interfaces import ActionSpec, ServiceSpec, action_spec, service_spec
+from amiro.ros2.interfaces import ActionCodec, ServiceSpec, service_spec
 
-ACTIONS: dict[str, ActionSpec] = {
-    spec.name: spec
-    for spec in (
-        action_spec(
-            names.MOVE_TO,
-            MoveToGoal,
-            MoveToFeedback,
-            MoveToResult,
-            lambda reason: MoveToResult(False, reason),
-        ),
-        action_spec(  # reframing for RecognizeActivity on an edge whose base is remote
-            names.FORWARD,
-            ForwardGoal,
-            PrimitiveFeedback,
-            PrimitiveResult,
-            lambda reason: PrimitiveResult(False, reason),
-        ),
-        action_spec(
-            names.BEHAVIOR_RUN,
-            BehaviorGoal,
-            BehaviorFeedback,
-            BehaviorResult,
-            lambda reason: BehaviorResult(False, reason),
-        ),
+# by ROS 2 action name: /navigate_to_pose is MoveTo as Nav2's NavigateToPose
+ACTIONS: dict[str, ActionCodec[Any, Any, Any]] = {
+    codec.ros_name: codec
+    for codec in (
+        MoveToCodec(),
+        ForwardCodec(),
+        SearchCodec(),
+        RecognizeActivityCodec(),
+        BehaviorRunCodec(),
+        NavigateToPoseCodec(),
     )
 }
 
 
-def known_action(name: str) -> ActionSpec:
+def known_action(name: str) -> ActionCodec[Any, Any, Any]:
     spec = ACTIONS.get(name)
     if spec is None:
         raise ConfigError(f"no ROS 2 action named {name} (known: {', '.join(sorted(ACTIONS))})")

@@ -26,16 +26,20 @@ from amiro.core.messages import Acknowledgement, BehaviorEvent
 from amiro.core.runtime import Runtime
 from amiro.deploy.config import NodeConfig
 from amiro.deploy.interfaces import known_action, known_service
+from amiro.deploy.nav2 import add_nav2_navigation, uses_nav2
+from amiro.deploy.parameters import declare_parameters
 from amiro.deploy.robot_edge import build_robot_edge
 from amiro.deploy.roles import BUILDERS
+from amiro.home.world import World
 from amiro.ros2.actions import ActionExporter, RemoteActionServer
 from amiro.ros2.bridge import Ros2Bridge
 from amiro.ros2.clock import ClockPublisher, ClockStoppedError, FollowedClock
 from amiro.ros2.context import RosContext
 from amiro.ros2.endpoint import WireEndpoint
+from amiro.ros2.hri import HriListener, HriPublisher
 from amiro.ros2.services import RemoteService, ServiceExporter
 from amiro.scenarios.hydration import HydrationOptions, scenario_config
-from amiro.system import SystemConfig
+from amiro.system import SystemConfig, home_path
 
 log = logging.getLogger("amiro.deploy.process")
 
@@ -130,6 +134,7 @@ def _run_process(
     exported = [known_service(name) for name in node.serve_services]
     imported = [known_service(name) for name in node.call_services]
     ros = RosContext(node.ros_node_name(process), node.ros.domain_id, node.ros.localhost_only)
+    declare_parameters(ros, node, cfg)
     clock = _process_clock(node, ros)
     if isinstance(clock, FollowedClock):
         stop.clock = clock
@@ -141,10 +146,17 @@ def _run_process(
             ros, node.topics_out(robot), node.topics_in(robot), node.remap, name="ros2_bridge"
         )
     )
-    endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, spec)) for spec in served]
+    endpoints: list[WireEndpoint] = [runtime.add(ActionExporter(ros, codec)) for codec in served]
     endpoints += [
-        runtime.add(RemoteActionServer(ros, spec, node.action_timeout_s)) for spec in called
+        runtime.add(RemoteActionServer(ros, codec, node.action_timeout_s)) for codec in called
     ]
+    if node.role == "edge" and node.hri:  # the people perception tracks, on ROS4HRI too
+        runtime.add(HriPublisher(ros))
+    if node.role == "edge" and cfg.perception.backend == "hri":  # another HRI stack's people
+        runtime.add(HriListener(ros, names.HRI_PEOPLE))
+    if node.role == "edge" and uses_nav2(cfg):  # MoveTo and primitives: the robot's Nav2
+        world = World.load(home_path(cfg), cfg.sim.resolution)
+        endpoints += add_nav2_navigation(runtime, ros, cfg, world, node.action_timeout_s)
     services: list[WireEndpoint] = [runtime.add(ServiceExporter(ros, s)) for s in exported]
     services += [runtime.add(RemoteService(ros, spec)) for spec in imported]
     parts = (build_robot_edge if robot else BUILDERS[node.role])(runtime, process, node, cfg)

@@ -14,10 +14,14 @@ from typing import Any
 
 from amiro.core.config import ConfigError
 from amiro.core.runtime import Runtime
+from amiro.deploy.boundary import NavigationState
+from amiro.deploy.cloud import pose_topic
 from amiro.deploy.config import NodeConfig
+from amiro.deploy.nav2 import uses_nav2
 from amiro.deploy.people import TrackedPeoplePublisher
 from amiro.deploy.roles import RoleParts, add_navigation, edge_behaviors
 from amiro.home.world import World
+from amiro.navigation.move_to import MoveToNode
 from amiro.robot.build import build_robot
 from amiro.robot.config import RobotConfig
 from amiro.ros2.context import RosSection
@@ -49,7 +53,11 @@ def build_robot_edge(
         raise ConfigError("navigation.localization: oracle is the simulator's true pose; use amcl")
     robot_cfg = robot_on_process_domain(cfg.robot, node, process)
     world = World.load(home_path(cfg), cfg.sim.resolution)
-    navigation = add_navigation(runtime, cfg, world)
+    navigation: MoveToNode | NavigationState = (
+        NavigationState(runtime.bus, pose_topic(cfg))  # MoveTo is the robot's Nav2
+        if uses_nav2(cfg)
+        else add_navigation(runtime, cfg, world)
+    )
     camera = build_camera_modules(runtime, cfg, lambda: navigation.pose)
     senses = Senses(camera.people, camera.activity)
     runtime.add(TrackedPeoplePublisher(camera.people.tracker))  # the cloud's dashboard

@@ -23,8 +23,10 @@ from amiro.deploy.config import NodeConfig
 from amiro.deploy.dialogue import RemoteUnderstanding
 from amiro.deploy.health import HeartbeatNode, NotificationLedger, Watchdog
 from amiro.deploy.ledger_store import LedgerStore
+from amiro.deploy.nav2 import uses_nav2
 from amiro.deploy.people import TrackedPeoplePublisher, finder_tracker
 from amiro.deploy.sim_camera import SimCameraNode
+from amiro.deploy.task_actions import TASK_ACTIONS, TaskActionServer
 from amiro.deploy.tf import MapOdomNode, robot_frames
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import Understanding
@@ -87,7 +89,8 @@ def build_sim_role(
     runtime: Runtime, process: str, node: NodeConfig, cfg: SystemConfig
 ) -> RoleParts:
     sim = build_sim(runtime, cfg.sim)
-    if names.MOVE_TO in node.serve_actions:  # navigation next to the robot, driven remotely
+    if {names.MOVE_TO, names.NAVIGATE_TO_POSE} & set(node.serve_actions):
+        # navigation next to the robot, driven remotely (by amiro's edge, or any Nav2 client)
         add_navigation(runtime, cfg, sim.world)
     (rng_skeletons,) = runtime.rng.spawn(1)
     rendered = node.camera is not None
@@ -118,7 +121,7 @@ def build_edge_role(
     world = World.load(cfg.sim.home or default_home_path(), cfg.sim.resolution)
     navigation: MoveToNode | NavigationState = (
         NavigationState(runtime.bus, pose_topic(cfg))
-        if names.MOVE_TO in node.call_actions
+        if names.MOVE_TO in node.call_actions or uses_nav2(cfg)
         else add_navigation(runtime, cfg, world)
     )
     feed = HeadSensorsFeed(
@@ -167,6 +170,9 @@ def edge_behaviors(
     layer = build_behavior_layer(runtime, cfg, modules, checkpoints=True)
     if names.BEHAVIOR_RUN in node.serve_actions:  # the cloud's dialogue and dashboard ask
         runtime.add(BehaviorActionServer(layer.engine, layer.handlers))
+    for action in TASK_ACTIONS:  # Search and RecognizeActivity as typed actions
+        if action.name in node.serve_actions:
+            runtime.add(TaskActionServer(layer.engine, action))
     runtime.add(HeartbeatNode(process, node.heartbeat_s))
     return layer
 

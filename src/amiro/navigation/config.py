@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import Field
 
@@ -13,6 +13,11 @@ from amiro.navigation import backends as _backends  # noqa: F401 - registers the
 
 
 class NavigationConfig(Section):
+    backend: Literal["amiro", "nav2"] = Field(
+        default="amiro",
+        description="amiro: amiro's own MoveTo (localisation, A*, DWA); nav2: MoveTo is a "
+        "client of the robot's own Nav2 (/navigate_to_pose), in a ROS 2 deployment's edge",
+    )
     map: Path | None = Field(default=None, description="map_server YAML; None: the home's map")
     localization: Annotated[str, backend_name("localization")] = Field(
         default="amcl",

@@ -47,6 +47,7 @@ class MoveToGoal:
 class MoveToFeedback:
     pose: Pose2D
     remaining_m: float
+    recoveries: int = 0  # recovery behaviours run so far for this goal (Nav2's count)
 
 
 @dataclass(frozen=True)
@@ -219,7 +220,9 @@ class MoveToNode(Node, ActionServer[MoveToGoal, MoveToFeedback, MoveToResult]):
             return
         goal = active.follower.path[-1]
         self.cmd_pub.publish(self.dwa.command(pose, self.velocity, twist, goal))
-        active.handle.publish_feedback(MoveToFeedback(pose, active.follower.remaining(pose)))
+        active.handle.publish_feedback(
+            MoveToFeedback(pose, active.follower.remaining(pose), active.recoveries)
+        )
         self._check_progress(active, pose)
 
     def _backoff(self, pose: Pose2D) -> Twist:

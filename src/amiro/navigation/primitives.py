@@ -67,15 +67,20 @@ def _finite(value: object) -> bool:
     return isinstance(value, int | float) and math.isfinite(value)
 
 
+def valid_goal(goal: Any, rotate: bool) -> bool:
+    """A finite distance or angle, and a positive speed if one is given."""
+    value = goal.angle if rotate else goal.distance
+    speed = None if rotate else goal.speed
+    return _finite(value) and (speed is None or (_finite(speed) and speed > 0.0))
+
+
 class _Server(ActionServer[Any, PrimitiveFeedback, PrimitiveResult]):
     def __init__(self, node: PrimitivesNode, rotate: bool) -> None:
         self.node = node
         self.rotate = rotate
 
     def accept(self, goal: Any) -> bool:
-        value = goal.angle if self.rotate else goal.distance
-        speed = None if self.rotate else goal.speed
-        return _finite(value) and (speed is None or (_finite(speed) and speed > 0.0))
+        return valid_goal(goal, self.rotate)
 
     def execute(self, handle: Handle) -> None:
         self.node.begin(handle, self.rotate)

@@ -77,6 +77,11 @@ def build_navigation(
     rng: np.random.Generator | None = None,
 ) -> MoveToNode:
     """The navigation node.  ``initial_pose`` seeds AMCL; without it, ``cfg.start_place``."""
+    if cfg.backend == "nav2":
+        raise ConfigError(
+            "navigation.backend: nav2 makes MoveTo a client of a robot's own Nav2 over ROS 2: "
+            "use it in a ROS 2 deployment's edge (amiro node / amiro launch)"
+        )
     if initial_pose is None and cfg.start_place is not None:
         if cfg.start_place not in places:
             raise ConfigError(f"navigation.start_place: no place named {cfg.start_place!r}")

@@ -7,6 +7,8 @@ Each kind, the config field that names it, and how its factory is called:
   feed, and a factory refuses the one it cannot read (on a camera it must return a
   :class:`~amiro.perception.camera_finder.CameraPeopleFinder`, whose boxes the activity
   module's pose model shares).
+  ``hri`` reads the persons another HRI stack publishes on ROS4HRI, which a ROS 2
+  deployment's edge puts on the bus (``inputs.bus``, topic ``/amiro/hri/people``).
 - ``faces`` (``perception.faces.backend``): ``factory(cfg: PerceptionConfig) -> FaceGallery |
   None``, what names the people in a camera's images (None: tracked unnamed).  The simulated
   people finder runs the simulator's own face model and accepts only ``sim``.
@@ -22,6 +24,7 @@ from amiro.core.registry import register
 register("perception", "sim", "amiro.perception.stack:sim_people_finder")
 register("perception", "oracle", "amiro.sim.perception_oracle:oracle_people_finder")
 register("perception", "camera", "amiro.system.camera:camera_people_finder", extra="vision")
+register("perception", "hri", "amiro.perception.hri:hri_people_finder", extra="ros2")
 register("faces", "sim", "amiro.system.camera:unnamed_faces")
 register("faces", "dlib", "amiro.system.camera:dlib_faces", extra="faces")
 register("detector", "hog", "amiro.system.camera:hog_detector", extra="vision")

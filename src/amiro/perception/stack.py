@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from amiro.core import registry
+from amiro.core.bus import Bus
 from amiro.core.config import ConfigError
 from amiro.core.messages import BoundingBox2D, Detection2D, Point, Pose2D
 from amiro.perception.config import PerceptionConfig
@@ -164,6 +165,7 @@ class PerceptionInputs:
     localization: PoseSource | None = None
     head: HeadCamera | None = None
     feed: CameraFeed | None = None
+    bus: Bus | None = None  # for finders that read people others publish (hri)
 
     def simulated_head(self) -> HeadCamera:
         """The simulator's head camera, or the one-line error a real robot's config gets."""
@@ -191,10 +193,11 @@ def build_people_finder(
     rng: np.random.Generator,
     cfg: PerceptionConfig,
     localization: PoseSource | None = None,
+    bus: Bus | None = None,
 ) -> PeopleFinder:
     """The people finder ``cfg.backend`` names, on ``camera`` (the simulator or a feed of its
     topics); positions go into the map frame through ``localization`` (the robot's pose
     estimate), or the pose the camera's source knows without it."""
-    inputs = PerceptionInputs(cfg, rng, localization, head=camera)
+    inputs = PerceptionInputs(cfg, rng, localization, head=camera, bus=bus)
     finder: PeopleFinder = registry.create("perception", cfg.backend, inputs)
     return finder

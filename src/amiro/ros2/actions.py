@@ -1,269 +1,365 @@
-"""Actions across processes, the way actionlib did it before ROS 2 actions: plain topics.
+"""Actions across processes as real ROS 2 actions (rclpy's ``ActionServer``/``ActionClient``).
 
-``<action>/goal``, ``/cancel``, ``/feedback`` and ``/result`` carry JSON in std_msgs/String
-with a goal id (a UUID); ``<action>/status`` is a standard action_msgs/GoalStatusArray that
-the server publishes periodically, listing its goals.  That status is also the server's
-heartbeat: a client whose goal is missing from it re-sends the goal (a goal sent before
-discovery finished is not lost), and a goal not listed for ``timeout_s`` aborts with the
-reason ``server_lost``.  :class:`RemoteActionServer` registers on the caller's bus under the
-action's name, so ``bus.send_goal`` works unchanged whichever process runs the server.
+Goal, feedback, result and cancel travel as the action type's own messages with the
+standard ``action_msgs/GoalStatus`` codes, so ``ros2 action send_goal``, RViz or any
+client written against the type (a Nav2 client for ``/navigate_to_pose``) can drive amiro.
+
+:class:`ActionExporter` serves the action for the local bus's server; :class:`RemoteActionServer`
+registers on the caller's bus under the action's name, so ``bus.send_goal`` works unchanged
+whichever process runs the server.  As for every bridge, rclpy's callbacks only queue what
+arrived; the bus acts on it when it spins, never inside a ROS 2 callback.
+
+rclpy runs a pending coroutine first on every executor turn (and takes nothing else in
+that turn), so nothing here awaits: the server marks an accepted goal executing itself,
+feedback is published from the bus's side, and rclpy's execute step only runs, once, when
+the bus goal has ended.
 """
 
 from __future__ import annotations
 
-import os
-import uuid
-from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from amiro.core.bus import ActionServer, BusError, GoalHandle, GoalStatus
 from amiro.ros2.context import RosContext
-from amiro.ros2.convert import ros_time
 from amiro.ros2.endpoint import WireEndpoint
-from amiro.ros2.interfaces import ActionSpec, WireError, envelope
+from amiro.ros2.interfaces import ActionCodec, WireError
 
-STATUS_TYPE = "action_msgs/msg/GoalStatusArray"
-# action_msgs/GoalStatus codes; a rejected goal never gets one (as in ROS 2, where
-# rejection is the answer to the goal request): it only travels on the result topic.
+AnyHandle = GoalHandle[Any, Any, Any]
+AnyCodec = ActionCodec[Any, Any, Any]
+# action_msgs/msg/GoalStatus codes
 STATUS_CODES = {
     GoalStatus.EXECUTING: 2,
     GoalStatus.SUCCEEDED: 4,
     GoalStatus.CANCELED: 5,
     GoalStatus.ABORTED: 6,
 }
-CANCELING = 3
-FINAL_CODES = frozenset({4, 5, 6})
+FROM_CODE = {code: status for status, code in STATUS_CODES.items()}
+# An exporter's status writer offers this liveliness lease; a caller watching it hears of a
+# SIGKILLed server within it, where DDS drops the participant only when its own lease ends.
+LIVELINESS_S = 2.0
 
-AnyHandle = GoalHandle[Any, Any, Any]
+
+def status_qos() -> Any:
+    """The action status topic's default QoS with an automatic liveliness lease: compatible
+    with every client (they request an infinite lease), watched by :class:`RemoteActionServer`."""
+    from rclpy.duration import Duration
+    from rclpy.qos import LivelinessPolicy, QoSProfile, qos_profile_action_status_default
+
+    return QoSProfile(  # type: ignore[no-untyped-call]
+        history=qos_profile_action_status_default.history,
+        depth=qos_profile_action_status_default.depth,
+        reliability=qos_profile_action_status_default.reliability,
+        durability=qos_profile_action_status_default.durability,
+        liveliness=LivelinessPolicy.AUTOMATIC,
+        liveliness_lease_duration=Duration(seconds=LIVELINESS_S),
+    )
 
 
-def goal_uuid(text: Any) -> str:
-    try:
-        return str(uuid.UUID(str(text)))
-    except ValueError:
-        raise WireError(f"goal_id {text!r} is not a UUID") from None
+def _rclpy_action() -> Any:
+    import rclpy.action
+
+    return rclpy.action
+
+
+@dataclass
+class _Served:
+    """A goal that arrived over ROS 2 and runs on the local bus."""
+
+    goal: Any
+    started: float
+    ros_goal: Any  # rclpy's ServerGoalHandle
+    handle: AnyHandle | None = None  # once the bus has it
+    refused: str = ""  # why the bus refused it after all
 
 
 class ActionExporter(WireEndpoint):
-    """Server side: goals arriving over ROS 2 run on this process's local action server."""
+    """Server side: goals arriving over ROS 2 run on this process's local action server.
 
-    def __init__(
-        self, ros: RosContext, spec: ActionSpec, status_period: float = 0.5, keep: int = 100
-    ) -> None:
-        super().__init__(ros, spec.name, f"ros2_serve:{spec.name}")
-        self.spec = spec
-        self.status_period = status_period
-        self.keep = keep  # finished goals remembered, to answer a re-sent goal again
-        self.active: dict[str, AnyHandle] = {}
-        self.finished: OrderedDict[str, dict[str, Any]] = OrderedDict()
-        self.incoming("goal")
-        self.incoming("cancel")
-        self.outgoing("feedback", depth=10)
-        self.outgoing("result")
-        self.outgoing("status", STATUS_TYPE, depth=10)
+    A goal request is answered inside rclpy's callback by the bus server's ``accept`` (a
+    check, nothing runs); the goal itself starts on the bus's next turn.  Nothing here
+    awaits: a pending rclpy coroutine is run first by every executor turn, so waiting
+    for the bus there would keep ROS 2's own messages (a followed ``/clock``) from ever
+    being taken, and the process would stall.
+    """
+
+    def __init__(self, ros: RosContext, codec: AnyCodec) -> None:
+        super().__init__(ros, codec.name, f"ros2_serve:{codec.ros_name}")
+        self.codec = codec
+        self.active: dict[bytes, _Served] = {}
+        self._decoded: dict[int, tuple[Any, Any]] = {}  # id(goal msg) -> (msg, goal)
+        self._server: Any = None
 
     def on_start(self) -> None:
         super().on_start()
-        self.create_timer(self.status_period, self.publish_status)
-        self.publish_status()
+        action = _rclpy_action()
+        self._server = action.ActionServer(
+            self.ros.node,
+            self.codec.action,
+            self.codec.ros_name,
+            execute_callback=self._finish,
+            goal_callback=self._on_goal_request,
+            handle_accepted_callback=self._on_accepted,
+            cancel_callback=self._on_cancel_request,
+            status_pub_qos_profile=status_qos(),
+        )
 
     def on_stop(self) -> None:
-        for handle in list(self.active.values()):
-            handle.cancel()
+        for served in list(self.active.values()):
+            if served.handle is not None:
+                served.handle.cancel()
+        if self._server is not None:
+            self._server.destroy()
+            self._server = None
 
-    def handle(self, kind: str, msg: Any) -> None:
-        if kind == "goal":
-            data = envelope(str(msg.data), "goal_id", "goal")
-            self._on_goal(goal_uuid(data["goal_id"]), data["goal"])
-        else:
-            handle = self.active.get(goal_uuid(envelope(str(msg.data), "goal_id")["goal_id"]))
-            if handle is not None:
-                handle.cancel()
-
-    def _on_goal(self, goal_id: str, payload: Any) -> None:
-        if goal_id in self.active:
-            return  # a re-send that crossed our status
-        if goal_id in self.finished:
-            self.send("result", self.finished[goal_id])
-            return
-        goal = self.spec.goal.load(payload)
+    # --- rclpy's side ---------------------------------------------------------------------
+    def _on_goal_request(self, msg: Any) -> Any:
+        response = _rclpy_action().GoalResponse
         try:
-            handle = self.runtime.bus.send_goal(self.interface, goal)
+            goal = self.codec.goal_from_ros(msg)
+        except WireError as exc:
+            self.stats.errors += 1
+            self.log.warning("goal for %s rejected: %s", self.codec.ros_name, exc)
+            return response.REJECT
+        if not (self.running and self.runtime.bus.accepts(self.interface, goal)):
+            return response.REJECT
+        self._decoded[id(msg)] = (msg, goal)
+        return response.ACCEPT
+
+    def _on_accepted(self, ros_goal: Any) -> None:
+        _msg, goal = self._decoded.pop(id(ros_goal.request))
+        from rclpy.impl.implementation_singleton import rclpy_implementation
+
+        # Executing from now on, without an execute coroutine.  rclpy has no public way:
+        # ServerGoalHandle.execute() also schedules the execute callback at once, and one
+        # that waits for the bus goal is re-run by every executor turn, taking nothing else
+        # (see the module's docstring and test_a_goal_request_never_starves_...).
+        ros_goal._update_state(rclpy_implementation.GoalEvent.EXECUTE)
+        served = _Served(goal, self.now(), ros_goal)
+        self.active[bytes(ros_goal.goal_id.uuid)] = served
+        self._queue("start", served)
+
+    def _on_cancel_request(self, ros_goal: Any) -> Any:
+        served = self.active.get(bytes(ros_goal.goal_id.uuid))
+        if served is None:
+            return _rclpy_action().CancelResponse.REJECT
+        self._queue("cancel", served)  # after its "start": the inbox keeps the order
+        return _rclpy_action().CancelResponse.ACCEPT
+
+    def _finish(self, ros_goal: Any) -> Any:
+        """rclpy's execute step, run once the bus goal has ended: its final state and result."""
+        served = self.active.pop(bytes(ros_goal.goal_id.uuid))
+        self.stats.sent += 1
+        handle = served.handle
+        if handle is None:  # the bus refused it when it came to start it
+            ros_goal.abort()
+            return self.codec.result_to_ros(self.codec.failure(served.refused), GoalStatus.ABORTED)
+        status = handle.status
+        if status is GoalStatus.SUCCEEDED:
+            ros_goal.succeed()
+        elif status is GoalStatus.CANCELED and ros_goal.is_cancel_requested:
+            ros_goal.canceled()
+        else:  # aborted, or canceled on the bus's side: no ROS 2 client asked for it
+            ros_goal.abort()
+        return self.codec.result_to_ros(handle.result, status)
+
+    # --- the bus's side ---------------------------------------------------------------------
+    def handle(self, kind: str, msg: Any) -> None:
+        served: _Served = msg
+        if kind == "cancel":
+            if served.handle is not None:
+                served.handle.cancel()
+            return
+        try:
+            handle = self.runtime.bus.send_goal(self.interface, served.goal)
         except BusError as exc:
-            self._finished(goal_id, GoalStatus.REJECTED, None, str(exc))
+            self._refused(served, str(exc))
             return
         if handle.status is GoalStatus.REJECTED:
-            self._finished(goal_id, GoalStatus.REJECTED, None, "rejected")
+            self._refused(served, "rejected")
             return
-        self.active[goal_id] = handle
-        handle.on_feedback(lambda fb: self._feedback(goal_id, fb))
-        handle.on_done(lambda h: self._done(goal_id, h))
-        self.publish_status()
+        served.handle = handle
+        if handle.feedback is not None:  # given as it started, before we could listen
+            self._feedback(served, handle.feedback)
+        handle.on_feedback(lambda fb: self._feedback(served, fb))
+        handle.on_done(lambda _h: self._server.notify_execute(served.ros_goal, self._finish))
 
-    def _feedback(self, goal_id: str, feedback: Any) -> None:
-        self.send("feedback", {"goal_id": goal_id, "feedback": self.spec.feedback.dump(feedback)})
+    def _refused(self, served: _Served, reason: str) -> None:
+        self.log.warning("goal for %s refused: %s", self.codec.ros_name, reason)
+        served.refused = reason
+        self._server.notify_execute(served.ros_goal, self._finish)
 
-    def _done(self, goal_id: str, handle: AnyHandle) -> None:
-        self.active.pop(goal_id, None)
-        self._finished(goal_id, handle.status, handle.result, handle.status.value)
-
-    def _finished(self, goal_id: str, status: GoalStatus, result: Any, reason: str) -> None:
-        answer = {
-            "goal_id": goal_id,
-            "status": status.value,
-            "result": None if result is None else self.spec.result.dump(result),
-            "reason": reason,
-        }
-        self.finished[goal_id] = answer
-        while len(self.finished) > self.keep:
-            self.finished.popitem(last=False)
-        self.send("result", answer)
-
-    def publish_status(self) -> None:
-        """The goals this server knows, as action_msgs/GoalStatusArray (also its heartbeat)."""
-        types, stamp = self.ros.types, ros_time(self.ros.types, self.now())
-        codes = {
-            gid: CANCELING if h.cancel_requested else STATUS_CODES[h.status]
-            for gid, h in self.active.items()
-        }
-        for gid, answer in self.finished.items():
-            code = STATUS_CODES.get(GoalStatus(answer["status"]))
-            if code is not None:
-                codes[gid] = code
-        statuses = [
-            types.make(
-                "action_msgs/msg/GoalStatus",
-                goal_info=types.make(
-                    "action_msgs/msg/GoalInfo",
-                    goal_id=types.make(
-                        "unique_identifier_msgs/msg/UUID", uuid=list(uuid.UUID(gid).bytes)
-                    ),
-                    stamp=stamp,
-                ),
-                status=code,
-            )
-            for gid, code in codes.items()
-        ]
-        self.send_ros("status", types.make(STATUS_TYPE, status_list=statuses))
+    def _feedback(self, served: _Served, feedback: Any) -> None:
+        elapsed = self.now() - served.started
+        served.ros_goal.publish_feedback(self.codec.feedback_to_ros(feedback, elapsed))
+        self.stats.sent += 1
 
 
 @dataclass
 class _Pending:
     handle: AnyHandle
-    goal: dict[str, Any]
-    last_heard: float
-    acknowledged: bool = False
+    since: float  # runtime time: sent, or the server last seen
+    ros_goal: Any = None  # rclpy's ClientGoalHandle once accepted
+    sent: bool = False
+    cancel: bool = False
+    waiting: list[str] = field(default_factory=list)
 
 
 class RemoteActionServer(WireEndpoint, ActionServer[Any, Any, Any]):
-    """Client side: stands on the local bus for an action server living in another process."""
+    """Client side: stands on the local bus for an action server living in another process.
+
+    A goal waits until the server is discovered; one whose server is not there (or goes away)
+    for ``timeout_s`` aborts with the reason ``server_lost``.
+    """
 
     def __init__(
-        self, ros: RosContext, spec: ActionSpec, timeout_s: float = 3.0, check_period: float = 0.25
+        self,
+        ros: RosContext,
+        codec: AnyCodec,
+        timeout_s: float = 3.0,
+        check_period: float = 0.25,
     ) -> None:
-        super().__init__(ros, spec.name, f"ros2_call:{spec.name}")
-        self.spec = spec
+        super().__init__(ros, codec.name, f"ros2_call:{codec.ros_name}")
+        self.codec = codec
         self.timeout_s = timeout_s
         self.check_period = check_period
-        self.pending: dict[str, _Pending] = {}
-        self.server_heard: float | None = None  # runtime time of the last status
-        self._owner = f"{ros.node.get_fully_qualified_name()}/{os.getpid()}"
+        self.pending: dict[int, _Pending] = {}
+        self.server_heard: float | None = None  # runtime time the server was last seen
+        self.lost = False  # the server's status writer lost its liveliness (killed)
         self._count = 0
-        self.outgoing("goal")
-        self.outgoing("cancel")
-        self.incoming("feedback", depth=10)
-        self.incoming("result")
-        self.incoming("status", STATUS_TYPE, depth=10)
+        self._client: Any = None
+        self._watch: Any = None
 
     def on_start(self) -> None:
         super().on_start()
+        self._client = _rclpy_action().ActionClient(
+            self.ros.node, self.codec.action, self.codec.ros_name
+        )
+        self._watch_liveliness()
         self.create_action_server(self.interface, self)
         self.create_timer(self.check_period, self._check)
 
     def on_stop(self) -> None:
-        for goal_id in list(self.pending):
-            self.send("cancel", {"goal_id": goal_id})
-            self._fail(goal_id, "bridge_stopped")
+        for key in list(self.pending):
+            pending = self.pending[key]
+            if pending.ros_goal is not None:
+                pending.ros_goal.cancel_goal_async()
+            self._fail(key, "bridge_stopped")
+        if self._client is not None:
+            self._client.destroy()
+            self._client = None
+        if self._watch is not None:
+            self.ros.node.destroy_subscription(self._watch)
+            self._watch = None
+
+    def _watch_liveliness(self) -> None:
+        """A second reader of the status topic, only for its liveliness events (a server
+        that is not amiro's offers no lease: the QoS do not match and nothing is heard)."""
+        from rclpy.event_handler import SubscriptionEventCallbacks
+
+        self._watch = self.ros.node.create_subscription(
+            self.ros.types.message_class("action_msgs/msg/GoalStatusArray"),
+            f"{self.codec.ros_name}/_action/status",
+            lambda _msg: None,
+            status_qos(),
+            event_callbacks=SubscriptionEventCallbacks(
+                liveliness=lambda info: self._queue("liveliness", (0, info))
+            ),
+        )
+
+    @property
+    def available(self) -> bool:
+        """Whether the ROS 2 server is on the graph now (a caller may route elsewhere)."""
+        return self._client is not None and not self.lost and bool(self._client.server_is_ready())
 
     # --- the local bus's side -------------------------------------------------------------
     def execute(self, handle: AnyHandle) -> None:
         self._count += 1
-        goal_id = str(uuid.uuid5(uuid.NAMESPACE_URL, f"amiro:{self._owner}:{self._count}"))
-        data = {"goal_id": goal_id, "goal": self.spec.goal.dump(handle.goal)}
-        self.pending[goal_id] = _Pending(handle, data, self.now())
-        self.send("goal", data)
+        self.pending[self._count] = _Pending(handle, self.now())
+        self._send(self._count)
 
     def cancel(self, handle: AnyHandle) -> None:
-        for goal_id, pending in self.pending.items():
+        for pending in self.pending.values():
             if pending.handle is handle:
-                self.send("cancel", {"goal_id": goal_id})
+                pending.cancel = True
+                if pending.ros_goal is not None:
+                    pending.ros_goal.cancel_goal_async()
 
-    # --- the wire's side ------------------------------------------------------------------
-    def handle(self, kind: str, msg: Any) -> None:
-        if kind == "status":
-            self._on_status(msg)
-            return
-        data = envelope(str(msg.data), "goal_id")
-        pending = self.pending.get(goal_uuid(data["goal_id"]))
-        if pending is None:
-            return  # another client's goal, or one we gave up on
-        pending.last_heard = self.now()
-        if kind == "feedback":
-            pending.handle.publish_feedback(self.spec.feedback.load(data.get("feedback")))
-        else:
-            self._on_result(goal_uuid(data["goal_id"]), pending, data)
-
-    def _on_result(self, goal_id: str, pending: _Pending, data: dict[str, Any]) -> None:
-        try:
-            status = GoalStatus(data.get("status"))
-        except ValueError:
-            raise WireError(f"unknown goal status {data.get('status')!r}") from None
-        if not status.done:
-            raise WireError("a result must carry a final status")
-        raw = data.get("result")
-        result = (
-            self.spec.failure(str(data.get("reason", status.value)))
-            if raw is None
-            else self.spec.result.load(raw)
+    def _send(self, key: int) -> None:
+        pending = self.pending[key]
+        if pending.sent or not self.available:
+            return  # not discovered yet: the check timer tries again
+        pending.sent, pending.since = True, self.now()
+        future = self._client.send_goal_async(
+            self.codec.goal_to_ros(pending.handle.goal),
+            feedback_callback=lambda msg: self._queue("feedback", (key, msg)),
         )
-        del self.pending[goal_id]
+        future.add_done_callback(lambda f: self._queue("accepted", (key, f)))
+        self.stats.sent += 1
+
+    # --- what rclpy queued ----------------------------------------------------------------
+    def handle(self, kind: str, msg: Any) -> None:
+        key, data = msg
+        if kind == "liveliness":
+            self._on_liveliness(data)
+            return
+        pending = self.pending.get(key)
+        if pending is None:
+            return  # a goal we gave up on
+        if kind == "feedback":
+            pending.handle.publish_feedback(self.codec.feedback_from_ros(data.feedback))
+        elif kind == "accepted":
+            self._on_accepted(key, pending, data.result())
+        else:
+            self._on_result(key, pending, data.result())
+
+    def _on_accepted(self, key: int, pending: _Pending, ros_goal: Any) -> None:
+        if not ros_goal.accepted:
+            del self.pending[key]
+            pending.handle.reject(self.codec.failure("rejected"))
+            return
+        pending.ros_goal = ros_goal
+        if pending.cancel:
+            ros_goal.cancel_goal_async()
+        ros_goal.get_result_async().add_done_callback(lambda f: self._queue("result", (key, f)))
+
+    def _on_result(self, key: int, pending: _Pending, response: Any) -> None:
+        status = FROM_CODE.get(int(response.status))
+        if status is None or not status.done:
+            raise WireError(f"a result must carry a final status, not {response.status}")
+        del self.pending[key]
+        result = self.codec.result_from_ros(response.result, status)
         handle = pending.handle
         end = {
             GoalStatus.SUCCEEDED: handle.succeed,
             GoalStatus.ABORTED: handle.abort,
             GoalStatus.CANCELED: handle.canceled,
-            GoalStatus.REJECTED: handle.reject,
         }[status]
         end(result)
 
-    def _on_status(self, msg: Any) -> None:
-        now = self.now()
-        self.server_heard = now
-        listed = {
-            str(uuid.UUID(bytes=bytes(s.goal_info.goal_id.uuid))): int(s.status)
-            for s in msg.status_list
-        }
-        for goal_id, pending in self.pending.items():
-            code = listed.get(goal_id)
-            if code is not None:
-                pending.acknowledged = True
-                pending.last_heard = now
-            if code in FINAL_CODES or (code is None and not pending.acknowledged):
-                # never heard (sent before discovery) or its result got lost: the server
-                # starts it, or answers a finished goal with its result again
-                self.send("goal", pending.goal)
+    def _on_liveliness(self, info: Any) -> None:
+        if info.alive_count > 0:
+            self.lost = False
+        elif info.not_alive_count_change > 0:  # lost, not a writer deleted cleanly
+            self.lost = True
+            lost = f"{self.codec.ros_name} stopped asserting liveliness ({LIVELINESS_S:g} s lease)"
+            for key in [k for k, p in self.pending.items() if p.sent]:
+                self._fail(key, f"server_lost: {lost}")
 
     def _check(self) -> None:
-        now = self.now()
-        for goal_id, pending in list(self.pending.items()):
-            if now - pending.last_heard > self.timeout_s:
-                self._fail(
-                    goal_id,
-                    f"server_lost: no answer from {self.interface} for {self.timeout_s:g} s",
-                )
+        now, ready = self.now(), self.available
+        if ready:
+            self.server_heard = now
+        for key in list(self.pending):
+            pending = self.pending[key]
+            if ready:
+                pending.since = now
+                self._send(key)
+            elif now - pending.since > self.timeout_s:
+                lost = f"no answer from {self.codec.ros_name} for {self.timeout_s:g} s"
+                self._fail(key, f"server_lost: {lost}")
 
-    def _fail(self, goal_id: str, reason: str) -> None:
-        pending = self.pending.pop(goal_id)
-        self.log.warning("goal %s of %s aborted: %s", goal_id, self.interface, reason)
-        pending.handle.abort(self.spec.failure(reason))
+    def _fail(self, key: int, reason: str) -> None:
+        pending = self.pending.pop(key)
+        self.log.warning("goal of %s aborted: %s", self.codec.ros_name, reason)
+        pending.handle.abort(self.codec.failure(reason))

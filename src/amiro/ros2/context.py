@@ -101,6 +101,14 @@ class RosContext:
                 break
         return self.callbacks - start
 
+    def declare(self, name: str, value: Any, description: str) -> None:
+        """A read-only ROS 2 parameter: what this process runs with, for ``ros2 param``
+        (``list``, ``get``, ``describe``); changing a setting means restarting it."""
+        from rcl_interfaces.msg import ParameterDescriptor
+
+        descriptor = ParameterDescriptor(description=description, read_only=True)
+        self.node.declare_parameter(name, value, descriptor)
+
     def node_names(self) -> list[str]:
         return [str(n) for n in self.node.get_node_names()]
 

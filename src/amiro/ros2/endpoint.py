@@ -33,7 +33,8 @@ class EndpointStats:
 
 
 class WireEndpoint(Node):
-    """A node talking JSON over ``<name>/<kind>`` std_msgs/String topics."""
+    """A node between rclpy and the bus: what rclpy's callbacks hand it is queued and acted
+    on when the bus spins (services: JSON over ``<name>/<kind>`` std_msgs/String topics)."""
 
     def __init__(self, ros: RosContext, name: str, node_name: str) -> None:
         super().__init__(node_name)

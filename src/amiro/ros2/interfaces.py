@@ -1,19 +1,24 @@
-"""Services and actions that can cross processes: their types and their JSON encoding.
+"""Services and actions that can cross processes: how their payloads travel.
 
-No interface package can be generated here (only prebuilt ROS 2 wheels), so requests,
-goals, feedback and results travel as JSON in ``std_msgs/String``.  One generic codec,
-pydantic's ``TypeAdapter``, handles any dataclass (nested dataclasses, Pose2D/Point,
-enums, None), so a new action only needs an :class:`ActionSpec` here, no per-type code.
+Actions are real ROS 2 actions of a generated type (``amiro_interfaces/action/MoveTo``,
+``nav2_msgs/action/NavigateToPose``): an :class:`ActionCodec` maps amiro's goal, feedback
+and result dataclasses to that type's messages and back.  Services still travel as JSON
+in ``std_msgs/String``: one generic codec, pydantic's ``TypeAdapter``, handles any
+dataclass (nested dataclasses, Pose2D/Point, enums, None).
 """
 
 from __future__ import annotations
 
+import importlib
 import json
-from collections.abc import Callable
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Generic, TypeVar
 
 from pydantic import TypeAdapter, ValidationError
+
+from amiro.core.bus import GoalStatus
 
 T = TypeVar("T")
 
@@ -53,16 +58,50 @@ def envelope(text: str, *keys: str) -> dict[str, Any]:
     return data
 
 
-@dataclass(frozen=True)
-class ActionSpec:
-    """An action's goal, feedback and result types, and the result a client reports when
-    the goal fails on the wire (server lost, rejected) rather than in the server."""
+G = TypeVar("G")
+F = TypeVar("F")
+R = TypeVar("R")
 
-    name: str
-    goal: Payload[Any]
-    feedback: Payload[Any]
-    result: Payload[Any]
-    failure: Callable[[str], Any]
+
+class ActionCodec(ABC, Generic[G, F, R]):
+    """One action on the wire: amiro's bus action ``name`` as the ROS 2 action ``ros_name``
+    of type ``ros_type``; its goal, feedback and result to that type's messages and back."""
+
+    def __init__(self, name: str, ros_type: str, ros_name: str | None = None) -> None:
+        self.name = name
+        self.ros_type = ros_type
+        self.ros_name = ros_name or name
+
+    @cached_property
+    def action(self) -> Any:
+        """The generated action class (``Goal``, ``Feedback``, ``Result`` inside)."""
+        package, kind, name = self.ros_type.split("/")
+        return getattr(importlib.import_module(f"{package}.{kind}"), name)
+
+    @abstractmethod
+    def goal_to_ros(self, goal: G) -> Any: ...
+
+    @abstractmethod
+    def goal_from_ros(self, msg: Any) -> G:
+        """Raise :class:`WireError` for a goal amiro cannot run (the server rejects it)."""
+
+    @abstractmethod
+    def feedback_to_ros(self, feedback: F, elapsed_s: float) -> Any:
+        """``elapsed_s``: time since the goal started (Nav2's navigation_time)."""
+
+    @abstractmethod
+    def feedback_from_ros(self, msg: Any) -> F: ...
+
+    @abstractmethod
+    def result_to_ros(self, result: R | None, status: GoalStatus) -> Any: ...
+
+    @abstractmethod
+    def result_from_ros(self, msg: Any, status: GoalStatus) -> R: ...
+
+    @abstractmethod
+    def failure(self, reason: str) -> R:
+        """The result a client reports when the goal fails on the wire (server lost,
+        rejected) rather than in the server."""
 
 
 @dataclass(frozen=True)
@@ -71,12 +110,6 @@ class ServiceSpec:
     request: Payload[Any]
     response: Payload[Any]
     timeout_s: float = field(default=5.0)
-
-
-def action_spec(
-    name: str, goal: type, feedback: type, result: type, failure: Callable[[str], Any]
-) -> ActionSpec:
-    return ActionSpec(name, Payload(goal), Payload(feedback), Payload(result), failure)
 
 
 def service_spec(name: str, request: type, response: type, timeout_s: float = 5.0) -> ServiceSpec:

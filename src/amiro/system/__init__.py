@@ -231,7 +231,7 @@ def build_senses(
     a feed of its topics on a deployment's edge."""
     rng_perception, rng_activity = runtime.rng.spawn(2)
     return Senses(
-        build_people_finder(camera, rng_perception, cfg.perception, localization),
+        build_people_finder(camera, rng_perception, cfg.perception, localization, runtime.bus),
         build_activity_recognizer(camera, skeletons(rng_activity), rng_activity, cfg.activity),
     )
 

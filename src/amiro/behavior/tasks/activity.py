@@ -61,6 +61,7 @@ class RecognizeActivity(Task):
         self.budget = p.max_reframe_m
         self.next_look = ctx.now()
         self.streak = 0
+        self.current = ""  # the label the recogniser gave last (for feedback)
         self.complete_seen = False
         self.labels: dict[str, int] = {}
         self.direction = 0  # +1 forwards, -1 backwards, 0 still
@@ -84,6 +85,7 @@ class RecognizeActivity(Task):
             self.next_look = now + self.period
             reading = ctx.need(ctx.modules.activity, "activity").observe(self.person)
             self.complete_seen |= reading.skeleton_complete
+            self.current = reading.label or ""
             if reading.label is not None:
                 self.labels[reading.label] = self.labels.get(reading.label, 0) + 1
             self.streak = self.streak + 1 if reading.label == self.activity else 0

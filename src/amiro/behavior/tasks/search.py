@@ -55,6 +55,8 @@ class Search(Task):
         self.steps: deque[tuple[str, Any]] = deque()
         self.goal: GoalHandle[MoveToGoal, Any, Any] | None = None
         self.step_until = ctx.now()
+        self.room = ""  # the room being searched, and the step under way (for feedback)
+        self.step = ""
         self._look_around(ctx, turn=True)
         self.detail = {"rooms": []}
 
@@ -68,6 +70,7 @@ class Search(Task):
             room = self.world.room_at(pose.x, pose.y)
             if room is not None:
                 self.visited.add(room)
+                self.room = room
         self.steps.extend(("head", yaw) for yaw in HEAD_SWEEP)
         if turn:
             self.steps.append(("turn", math.pi))
@@ -88,10 +91,12 @@ class Search(Task):
             if room is None:
                 return False
             self.visited.add(room)
+            self.room = room
             self.detail["rooms"].append(room)
             ctx.event("search_room", room=room, person=self.person)
             self.steps.append(("goto", room))
         kind, arg = self.steps.popleft()
+        self.step = kind
         if kind == "look":
             look_at(ctx, arg)
             self.step_until = ctx.now() + 2 * self.dwell

@@ -1,9 +1,10 @@
-"""Build ROS 2 interface packages that PyPI lacks (tf2_msgs) from amiro's ``.msg`` files.
+"""Build ROS 2 interface packages that PyPI lacks from amiro's ``.msg``/``.action`` files.
 
-``build_package("tf2_msgs")`` generates the sources with the installed rosidl generators,
+``build_package("nav2_msgs")`` generates the sources with the installed rosidl generators,
 compiles them with gcc/g++ and installs the package into the venv, so that
-``from tf2_msgs.msg import TFMessage`` works and rclpy can carry it, wire-compatible with
-an upstream ROS 2 Jazzy install (same type name and type hash).  Run once by setup.
+``from nav2_msgs.action import NavigateToPose`` works and rclpy can serve and call it,
+wire-compatible with an upstream ROS 2 Jazzy install (same type names and type hashes).
+Shipped: tf2_msgs, nav2_msgs, hri_msgs and amiro's own amiro_interfaces.  Run once by setup.
 """
 
 from __future__ import annotations

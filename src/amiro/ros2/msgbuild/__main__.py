@@ -19,7 +19,7 @@ from amiro.ros2.msgbuild.package import shipped_packages
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python -m amiro.ros2.msgbuild",
-        description="Build a ROS 2 interface package shipped as .msg files into a prefix.",
+        description="Build the ROS 2 interface packages shipped as .msg/.action files.",
     )
     parser.add_argument(
         "--package",

@@ -57,13 +57,13 @@ def plan_targets(gen: GeneratedSources, ros_prefix: Path, out_dir: Path) -> list
 
     generator_c = target(
         _lib(pkg, "rosidl_generator_c"),
-        gen.sources("c", "msg/detail/*.c"),
+        gen.sources("c", "detail/*.c"),
         (c_tree,),
         [_lib(d, "rosidl_generator_c") for d in deps],
     )
     fastrtps_c = target(
         _lib(pkg, "rosidl_typesupport_fastrtps_c"),
-        gen.sources("fastrtps_c", "msg/detail/*.cpp"),
+        gen.sources("fastrtps_c", "detail/*.cpp"),
         (c_tree, gen.tree("fastrtps_c")),
         [
             _lib(pkg, "rosidl_generator_c"),
@@ -76,7 +76,7 @@ def plan_targets(gen: GeneratedSources, ros_prefix: Path, out_dir: Path) -> list
     )
     introspection_c = target(
         _lib(pkg, "rosidl_typesupport_introspection_c"),
-        gen.sources("introspection_c", "msg/detail/*.c"),
+        gen.sources("introspection_c", "detail/*.c"),
         (c_tree, gen.tree("introspection_c")),
         [
             _lib(pkg, "rosidl_generator_c"),
@@ -86,14 +86,19 @@ def plan_targets(gen: GeneratedSources, ros_prefix: Path, out_dir: Path) -> list
     )
     typesupport_c = target(
         _lib(pkg, "rosidl_typesupport_c"),
-        gen.sources("typesupport_c", "msg/*.cpp"),
+        gen.sources("typesupport_c", "*.cpp"),
         (c_tree, gen.tree("typesupport_c")),
-        [_lib(pkg, "rosidl_generator_c"), "rosidl_typesupport_c"],
+        # an action's type support refers to its dependencies' (action_msgs' CancelGoal)
+        [
+            _lib(pkg, "rosidl_generator_c"),
+            *(_lib(d, "rosidl_typesupport_c") for d in deps),
+            "rosidl_typesupport_c",
+        ],
     )
     py_includes = (Path(sysconfig.get_paths()["include"]), Path(np.get_include()))
     generator_py = target(
         _lib(pkg, "rosidl_generator_py"),
-        gen.sources("py", "msg/*_s.c"),
+        gen.sources("py", "*_s.c"),
         (c_tree, *py_includes),
         [
             _lib(pkg, "rosidl_generator_c"),

@@ -2,7 +2,9 @@
 
 The generators' own command-line extensions are used directly: the ``rosidl`` command
 itself cannot load them from the PyPI wheels (each is registered twice and the ``.msg``
-translator wants catkin_pkg), so ``.msg`` files are translated here with rosidl_adapter.
+translator wants catkin_pkg), so ``.msg``/``.srv``/``.action`` files are translated here
+with rosidl_adapter (an action becomes its Goal/Result/Feedback, the SendGoal and GetResult
+services and the FeedbackMessage, exactly as ament would expand it).
 Every generator writes into its own tree, ``<build>/<generator>/<package>/...``, which is
 also the include root the compiler gets for it.
 """
@@ -16,7 +18,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from rosidl_adapter.action import convert_action_to_idl
 from rosidl_adapter.msg import convert_msg_to_idl
+from rosidl_adapter.srv import convert_srv_to_idl
 from rosidl_generator_c.cli import GenerateC
 from rosidl_generator_py.cli import GeneratePython
 from rosidl_generator_type_description.cli import HashTypeDescription
@@ -29,21 +33,24 @@ from amiro.ros2.msgbuild.package import InterfacePackage
 
 # The C type supports rclpy can use; typesupport_c dispatches between them at run time.
 TYPESUPPORTS = ("rosidl_typesupport_fastrtps_c", "rosidl_typesupport_introspection_c")
+CONVERTERS = {"msg": convert_msg_to_idl, "srv": convert_srv_to_idl, "action": convert_action_to_idl}
 
 
 @dataclass(frozen=True)
 class GeneratedSources:
     package: InterfacePackage
     build_dir: Path
-    idl_files: tuple[Path, ...]  # idl/<package>/msg/X.idl
-    type_descriptions: tuple[Path, ...]  # type_description/<package>/msg/X.json
+    idl_files: tuple[Path, ...]  # idl/<package>/<kind>/X.idl
+    type_descriptions: tuple[Path, ...]  # type_description/<package>/<kind>/X.json
 
     def tree(self, generator: str) -> Path:
         """The include root of one generator's output (``py`` holds the Python package)."""
         return self.build_dir / generator
 
     def sources(self, generator: str, pattern: str) -> list[Path]:
-        return sorted((self.tree(generator) / self.package.name).glob(pattern))
+        """``pattern`` under each interface kind's directory (``detail/*.c``)."""
+        root = self.tree(generator) / self.package.name
+        return sorted(p for kind in self.package.kinds for p in root.glob(f"{kind}/{pattern}"))
 
 
 @contextlib.contextmanager
@@ -66,14 +73,14 @@ def generate_sources(
     """Every source file of the package's C libraries and Python module, under ``build_dir``."""
     name = package.name
     idl_root = build_dir / "idl" / name
-    missing = [d for d in package.dependencies if not (ros_prefix / "share" / d / "msg").is_dir()]
+    missing = [d for d in package.dependencies if not (ros_prefix / "share" / d).is_dir()]
     if missing:
         raise ConfigError(f"{name} needs {', '.join(missing)}, not installed in {ros_prefix}")
     include_paths = [str(ros_prefix / "share" / dep) for dep in package.dependencies]
     with _ament_prefix(ros_prefix), contextlib.redirect_stdout(io.StringIO()):
         idl_files = tuple(
-            convert_msg_to_idl(package.source_dir, name, rel, idl_root / rel.parent)
-            for rel in package.messages
+            CONVERTERS[rel.parts[0]](package.source_dir, name, rel, idl_root / rel.parent)
+            for rel in package.interfaces
         )
         interface_files = [f"{idl_root}:{p.relative_to(idl_root).as_posix()}" for p in idl_files]
         descriptions = HashTypeDescription("type_description").generate_type_hashes(

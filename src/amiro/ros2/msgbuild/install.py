@@ -2,7 +2,8 @@
 
 What goes where is what rclpy, ``ros2 interface`` and the ament index look for:
 ``lib/`` the shared libraries, ``site-packages/<pkg>`` the Python package,
-``share/<pkg>/msg`` the definitions and type descriptions, ``include/<pkg>`` the headers,
+``share/<pkg>/{msg,srv,action}`` the definitions and type descriptions (one per definition
+file, as upstream installs them), ``include/<pkg>`` the headers,
 ``share/ament_index/resource_index/{packages,rosidl_interfaces}/<pkg>`` the index entries.
 A stamp records the definitions' fingerprint, so an up-to-date package is never rebuilt.
 """
@@ -38,7 +39,10 @@ def is_current(package: InterfacePackage, prefix: Path) -> bool:
     return (
         isinstance(stamp, dict)
         and stamp.get("fingerprint") == package.fingerprint
-        and (site_packages(prefix) / package.name / "msg" / "__init__.py").is_file()
+        and all(
+            (site_packages(prefix) / package.name / kind / "__init__.py").is_file()
+            for kind in package.kinds
+        )
     )
 
 
@@ -54,19 +58,22 @@ def install(gen: GeneratedSources, stage: Path, prefix: Path) -> list[Path]:
     for lib in libs:
         _copy(lib, prefix / "lib" / lib.name)
     py_dst = site_packages(prefix) / pkg.name
-    (py_dst / "msg").mkdir(parents=True, exist_ok=True)
+    py_dst.mkdir(parents=True, exist_ok=True)
     (py_dst / "__init__.py").touch()
-    for module in (gen.tree("py") / pkg.name / "msg").glob("*.py"):
-        _copy(module, py_dst / "msg" / module.name)
+    for kind in pkg.kinds:
+        for module in (gen.tree("py") / pkg.name / kind).glob("*.py"):
+            _copy(module, py_dst / kind / module.name)
     for ext in (stage / pkg.name).glob("*.so"):
         _copy(ext, py_dst / ext.name)
     share = prefix / "share" / pkg.name
     interfaces: list[str] = []
-    for rel in pkg.messages:
+    for rel in pkg.interfaces:
         _copy(pkg.source_dir / rel, share / rel)
         interfaces += [rel.with_suffix(".idl").as_posix(), rel.as_posix()]
+    stems = {rel.stem for rel in pkg.interfaces}
     for generated in (*gen.idl_files, *gen.type_descriptions):
-        _copy(generated, share / "msg" / generated.name)
+        if generated.stem in stems:
+            _copy(generated, share / generated.parent.name / generated.name)
     for tree in HEADER_TREES:
         root = gen.tree(tree)
         for header in root.rglob("*.h"):
