@@ -1,5 +1,7 @@
 """Dialogue in the cloud: the edge's Listen understands answers through a service that the
-cloud's dialogue stack answers, over ROS 2, with sim, edge and cloud as three OS processes."""
+cloud's dialogue stack answers, over ROS 2, with sim, edge and cloud as three OS processes.
+The residents are heard as audio: the sim voices their replies onto /amiro/audio, the
+cloud's recogniser publishes the transcripts the edge's Listen reads."""
 
 from __future__ import annotations
 
@@ -60,7 +62,21 @@ def test_listen_understands_in_the_cloud_and_hydration_completes(
     ]
     assert listened and cloud["understood"]
     assert listened[-1]["intent"] == cloud["understood"][-1]["intent"] == "affirm"
-    assert round(listened[-1]["confidence"], 3) == cloud["understood"][-1]["confidence"]
+    # every Listen (the reminder's, the confirmation's) got the cloud's answer to its call
+    answers = [
+        (e["detail"]["intent"], round(e["detail"]["confidence"], 3))
+        for e in edge["events"]
+        if e["type"] == "task_finished" and e.get("task_type") == "Listen"
+    ]
+    assert answers == [(u["intent"], u["confidence"]) for u in cloud["understood"]]
+    # what Listen heard is what the cloud recognised in the audio the sim voiced
+    sim = launcher.report("sim")
+    recognized = cloud["recognized"]
+    assert len(sim["voiced"]) == sim["replies"] == len(recognized) >= 1
+    assert all(r["lang"] == "en" and r["text"] and r["speech_s"] > 0.5 for r in recognized)
+    assert all(r["published"] >= r["ended"] for r in recognized)
+    heard = [e["text"] for e in edge["events"] if e["type"] == "heard"]
+    assert heard == [r["text"] for r in recognized]
     assert edge["runs"] and edge["runs"][0]["outcome"] == "completed"  # later ones may run on
     assert cloud["outcome"] == "acknowledged" and cloud["pending_notifications"] == []
     assert all(c["exit_code"] is not None for c in launcher.summary())

@@ -17,24 +17,20 @@ from dataclasses import replace
 
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.asr import Recognizer
-from amiro.dialogue.audio import preprocess
-from amiro.dialogue.profiles import SpeakerProfile
-from amiro.dialogue.tts import Synthesizer
 from amiro.dialogue.understanding import Nlu
+from amiro.dialogue.voicing import Voicer
 
 
 class AudioLoopUnderstanding:
     def __init__(
         self,
         nlu: Nlu,
-        synthesizer: Synthesizer,
+        voicer: Voicer,
         recognizer_for: Callable[[str], Recognizer],
-        profiles: dict[str, SpeakerProfile],
     ) -> None:
         self.nlu = nlu
-        self.synthesizer = synthesizer
+        self.voicer = voicer
         self.recognizer_for = recognizer_for
-        self.profiles = profiles
         self.recognizers: dict[str, Recognizer] = {}
         self._lock = threading.Lock()
         self.heard: list[tuple[str, str]] = []  # (said, recognised), for reports and tests
@@ -48,12 +44,7 @@ class AudioLoopUnderstanding:
     def intent(self, heard: SpeechHeard) -> tuple[str, float]:
         if heard.intent is None:  # a real recogniser's result: already heard
             return self.nlu.intent(heard)
-        profile = self.profiles.get(heard.speaker or "") or SpeakerProfile(lang=heard.lang)
-        audio = self.synthesizer.synthesize(
-            heard.text, heard.lang, profile.voice, profile.words_per_minute
-        )
-        audio = preprocess(audio, profile.gain_db, profile.highpass_hz)
-        transcript = self.recognizer(heard.lang).transcribe(audio)
+        transcript = self.recognizer(heard.lang).transcribe(self.voicer.voice(heard))
         self.heard.append((heard.text, transcript.text))
         recognised = replace(
             heard, text=transcript.text, confidence=transcript.confidence, intent=None

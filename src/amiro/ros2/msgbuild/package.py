@@ -1,6 +1,6 @@
 """The interface packages amiro ships as ``.msg`` sources, and what each depends on.
 
-ROS 2 message packages missing from PyPI (tf2_msgs) are kept in
+ROS 2 message packages missing from PyPI (tf2_msgs, audio_common_msgs) are kept in
 ``amiro/data/ros2_interfaces/<package>/msg/`` with their upstream licence; the packages
 their fields refer to (geometry_msgs...) must already be installed in the ROS prefix.
 """
@@ -14,8 +14,7 @@ from pathlib import Path
 from rosidl_adapter.parser import parse_message_string
 
 from amiro.core.config import ConfigError
-
-INTERFACES_DIR = Path(__file__).resolve().parents[2] / "data" / "ros2_interfaces"
+from amiro.ros2.types import INTERFACES_DIR
 
 
 @dataclass(frozen=True)
