@@ -5,14 +5,14 @@ the recogniser heard, not on the simulator's text (``dialogue.hearing: audio``).
 
 Only the simulator's replies are voiced: they are the only :class:`SpeechHeard` that carry an
 intent label (its oracle); what a real microphone's recogniser publishes goes straight to the
-NLU.  One recogniser per language, built when its first reply is heard (the Whisper model
-under them is loaded then, once per process, about 1.5 s): a system that never hears a
-simulated reply, as most tests, never loads it."""
+NLU.  One recogniser per language of the household, built with the system (the Whisper model
+under them is loaded then, once per process, 1-5 s on this 2-core machine), as the NLU is
+warmed up then: a run is not slowed by loading when its first reply is heard."""
 
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 
 from amiro.core.messages import SpeechHeard
@@ -27,6 +27,7 @@ class AudioLoopUnderstanding:
         nlu: Nlu,
         voicer: Voicer,
         recognizer_for: Callable[[str], Recognizer],
+        langs: Iterable[str] = (),
     ) -> None:
         self.nlu = nlu
         self.voicer = voicer
@@ -34,6 +35,8 @@ class AudioLoopUnderstanding:
         self.recognizers: dict[str, Recognizer] = {}
         self._lock = threading.Lock()
         self.heard: list[tuple[str, str]] = []  # (said, recognised), for reports and tests
+        for lang in langs:  # now, not at the first reply (another language: when heard)
+            self.recognizer(lang)
 
     def recognizer(self, lang: str) -> Recognizer:
         with self._lock:

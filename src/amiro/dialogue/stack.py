@@ -102,7 +102,8 @@ def amiro_understanding(
     def recognizer_for(lang: str) -> Recognizer:
         return make_recognizer(cfg, "answers", lang, names)
 
-    return AudioLoopUnderstanding(nlu, Voicer(synthesizer, profiles), recognizer_for)
+    voicer = Voicer(synthesizer, profiles)
+    return AudioLoopUnderstanding(nlu, voicer, recognizer_for, household_langs(profiles))
 
 
 def household_langs(profiles: dict[str, SpeakerProfile]) -> list[str]:
