@@ -9,6 +9,12 @@ Real speech (never copied into the repository; bring it):
                   and a soup order: nothing amiro serves) and the wheel's clone-test.wav and
                   endgame_nagg_nell.wav (a dialogue from Beckett's "Endgame")
   real_ooc_fr/    picovoice_rhino's test_out_of_context_fr.wav
+  real_en_ps_cmds/ pocketsphinx's test recordings (``test/data`` of its source tree, BSD; its
+                  wheels do not ship them; figures: cmusphinx/pocketsphinx, commit 511126b):
+                  goforward.raw ("go forward ten meters", the command its docs decode) and the
+                  five card-game commands of cards/ ("ten of clubs"...), with their references
+  real_en_ps_read/ pocketsphinx's five LibriVox utterances (Austen, "Sense and Sensibility",
+                  read aloud), with their references
 Generated speech (espeak-ng: say "generated", never "real"):
   gen_{en,fr,ro}/ amiro's held-out NLU utterances (data/dialogue/eval, labelled intents),
                   spoken by espeak-ng, reverberated (sox reverb 50 %) with brown noise at
@@ -17,13 +23,15 @@ Generated speech (espeak-ng: say "generated", never "real"):
   gen_ooc_en/     the 50 English out-of-grammar sentences (data/dialogue/grammar) and 10
                   noise clips, for Listen's non-answers
 
-  python benchmarks/speech_sets.py OUT --moonshine-wheel W.whl --picovoice DIR
+  python benchmarks/speech_sets.py OUT --moonshine-wheel W.whl --picovoice DIR \
+      --pocketsphinx TREE    (TREE: pocketsphinx's source tree, holding test/data)
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 import shutil
 import subprocess
 import tempfile
@@ -57,10 +65,12 @@ OOC_PICOVOICE = {
 SNR_DB = 15.0
 
 
-def _label(wav: Path, text: str | None, intent: str) -> None:
+def _label(wav: Path, text: str | None, intent: str | None) -> None:
+    """The reference transcript and intent (None: the NLU's reading of the reference)."""
     if text is not None:
         wav.with_suffix(".txt").write_text(text + "\n", encoding="utf-8")
-    wav.with_suffix(".intent").write_text(intent + "\n", encoding="utf-8")
+    if intent is not None:
+        wav.with_suffix(".intent").write_text(intent + "\n", encoding="utf-8")
 
 
 def real_sets(out: Path, wheel: Path, picovoice: Path) -> None:
@@ -78,6 +88,41 @@ def real_sets(out: Path, wheel: Path, picovoice: Path) -> None:
         for name in names:
             (out / f"real_ooc_{lang}").mkdir(parents=True, exist_ok=True)
             shutil.copyfile(picovoice / f"{name}.wav", out / f"real_ooc_{lang}" / f"{name}.wav")
+
+
+PS_COMMANDS = {"goforward.raw": "go forward ten meters"}  # the pocketsphinx docs' decoding
+PS_TRANSCRIPT = re.compile(r"<s>(.*?)</s>\s*\((\S+)\)")
+
+
+def _pocketsphinx_files(src: Path) -> dict[str, bytes]:
+    """``test/data/...`` of a pocketsphinx source tree, by relative path."""
+    root = src / "test" / "data"
+    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+
+
+def _transcripts(text: str) -> dict[str, str]:
+    return {m.group(2): " ".join(m.group(1).split()) for m in PS_TRANSCRIPT.finditer(text)}
+
+
+def pocketsphinx_sets(out: Path, src: Path) -> None:
+    files = _pocketsphinx_files(src)
+    if "goforward.raw" not in files:
+        raise SystemExit(f"{src}: no test/data/goforward.raw (pocketsphinx's source tree)")
+    for name, text in PS_COMMANDS.items():
+        samples = np.frombuffer(files[name], dtype="<i2").astype(np.int16)
+        wav = out / "real_en_ps_cmds" / f"{Path(name).stem}.wav"
+        write_wav(wav, Audio(samples, 16000))
+        _label(wav, text, None)
+    sets = {  # folder: (its transcription file, the set it goes to)
+        "cards": ("cards/cards.transcription", "real_en_ps_cmds"),
+        "librivox": ("librivox/transcription", "real_en_ps_read"),
+    }
+    for folder, (listing, target) in sets.items():
+        for utt, text in _transcripts(files[listing].decode()).items():
+            wav = out / target / f"{folder}_{utt}.wav"
+            wav.parent.mkdir(parents=True, exist_ok=True)
+            wav.write_bytes(files[f"{folder}/{utt}.wav"])
+            _label(wav, text, None)
 
 
 def noisy_room(audio: Audio, rng: np.random.Generator, tmp: Path) -> Audio:
@@ -117,10 +162,15 @@ def main() -> None:
     parser.add_argument("out", type=Path)
     parser.add_argument("--moonshine-wheel", type=Path)
     parser.add_argument("--picovoice", type=Path, help="shared/data/speech/picovoice_rhino")
+    parser.add_argument("--pocketsphinx", type=Path, help="its source tree (test/data)")
+    parser.add_argument("--real-only", action="store_true", help="skip the generated sets")
     args = parser.parse_args()
     if args.moonshine_wheel and args.picovoice:
         real_sets(args.out, args.moonshine_wheel, args.picovoice)
-    generated_sets(args.out)
+    if args.pocketsphinx:
+        pocketsphinx_sets(args.out, args.pocketsphinx)
+    if not args.real_only:
+        generated_sets(args.out)
 
 
 if __name__ == "__main__":

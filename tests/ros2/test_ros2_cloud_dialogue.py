@@ -65,3 +65,38 @@ def test_listen_understands_in_the_cloud_and_hydration_completes(
     assert cloud["outcome"] == "acknowledged" and cloud["pending_notifications"] == []
     assert all(c["exit_code"] is not None for c in launcher.summary())
     assert not launcher.unclean_exits(), launcher.unclean_exits()
+
+
+HEARING = Path(
+    str(resources.files("amiro").joinpath("data/deployments/hydration-hearing-cloud.yaml"))
+)
+
+
+@pytest.mark.slow
+def test_the_cloud_hears_the_residents_audio_and_listen_reads_its_transcripts(
+    tmp_path: Path, domain_id: int
+) -> None:
+    launcher = Launcher(load_deployment(HEARING), tmp_path, domain_id=domain_id)
+    assert launcher.run_all() == "cloud finished"
+    sim, edge, cloud = (launcher.report(p) for p in ("sim", "edge", "cloud"))
+    # every reply went out as audio, and was heard by the cloud's recogniser in English
+    recognized = cloud["recognized"]
+    assert len(sim["voiced"]) == sim["replies"] == len(recognized) >= 1
+    assert all(r["lang"] == "en" and r["text"] and r["speech_s"] > 0.5 for r in recognized)
+    assert all(r["published"] >= r["ended"] for r in recognized)  # not before it was said
+    # what Listen heard is what the cloud recognised, and its intent the cloud NLU's answer
+    heard = [e["text"] for e in edge["events"] if e["type"] == "heard"]
+    assert heard == [r["text"] for r in recognized]
+    answers = [
+        (e["detail"]["intent"], round(e["detail"]["confidence"], 3))
+        for e in edge["events"]
+        if e["type"] == "task_finished" and e.get("task_type") == "Listen"
+    ]
+    assert answers == [(u["intent"], u["confidence"]) for u in cloud["understood"]]
+    assert answers[0][0] == "affirm"  # the reminder's answer, heard in the audio
+    called = edge["services"][f"ros2_call:{names.UNDERSTAND}"]
+    assert called["sent"] == called["received"] == len(answers) and called["errors"] == 0
+    # seen drinking, or (the watch missed it) confirmed by voice: the reminder was answered
+    assert edge["runs"][0]["outcome"] in ("completed", "confirmed_by_voice")
+    assert cloud["outcome"] == "acknowledged" and cloud["pending_notifications"] == []
+    assert not launcher.unclean_exits(), launcher.unclean_exits()

@@ -22,7 +22,8 @@ from amiro.ros2.msgbuild import BuildResult, build_package
 from amiro.ros2.msgbuild.__main__ import main
 from amiro.ros2.msgbuild.compile import compiler
 from amiro.ros2.msgbuild.install import is_current, site_packages
-from amiro.ros2.msgbuild.package import INTERFACES_DIR, load_package
+from amiro.ros2.msgbuild.package import load_package
+from amiro.ros2.types import INTERFACES_DIR
 
 # `ros2 topic info -v /tf` on an upstream ROS 2 Jazzy install
 JAZZY_TFMESSAGE_HASH = "RIHS01_e369d0f05a23ae52508854b66f6aa0437f3449d652e8cbf22d5abe85d020f087"
@@ -169,7 +170,7 @@ def test_any_shipped_style_package_builds(tmp_path: Path) -> None:
 
 
 def test_unknown_package_is_one_line_and_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
-    shipped = "amiro_interfaces, hri_msgs, nav2_msgs, tf2_msgs"
+    shipped = "amiro_interfaces, audio_common_msgs, hri_msgs, nav2_msgs, tf2_msgs"
     with pytest.raises(ConfigError, match=rf"no interface package .nope.*shipped: {shipped}"):
         load_package("nope")
     assert main(["--package", "nope"]) == 2

@@ -278,6 +278,21 @@ class SpeechRequest:
     addressee: str = ""  # the person spoken to; empty: whoever is near
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class AudioStamped:
+    """A piece of microphone audio, 16-bit mono PCM at ``rate`` Hz (audio_common_msgs'
+    AudioStamped, the message ROS 2 recognisers such as whisper_ros subscribe to); the stamp
+    is when its first sample was heard."""
+
+    header: Header
+    samples: npt.NDArray[np.int16]
+    rate: int
+
+    @property
+    def seconds(self) -> float:
+        return len(self.samples) / self.rate
+
+
 @dataclass(frozen=True, slots=True)
 class SpeechHeard:
     """An utterance heard by the robot.  ``intent`` is set only by sources that know it

@@ -60,6 +60,7 @@ SKELETONS = "/amiro/sim/skeletons"  # Skeleton
 
 # --- dialogue -----------------------------------------------------------------------------
 HEARD = "/amiro/speech/heard"  # SpeechHeard
+AUDIO = "/amiro/audio"  # AudioStamped: the robot's microphone (audio_common_msgs/AudioStamped)
 UNDERSTAND = "/amiro/dialogue/understand"  # service: text -> intent and entities
 
 # --- smart environment and health ---------------------------------------------------------

@@ -122,6 +122,13 @@ class NodeConfig(Section):
         default=(), description="topics imported besides ``subscribe`` (or the defaults)"
     )
     remap: dict[str, str] = Field(default_factory=dict)
+    hear_audio: bool = Field(
+        default=False,
+        description="sim: voice the residents' replies onto /amiro/audio (the robot's "
+        "microphone) instead of sending their text on /amiro/speech/heard; edge or cloud: "
+        "recognise /amiro/audio here (dialogue.asr, loaded at start) and publish the "
+        "transcripts on /amiro/speech/heard",
+    )
     serve_actions: tuple[str, ...] = Field(
         default=(), description="actions whose server runs here, offered over ROS 2"
     )
@@ -175,12 +182,23 @@ class NodeConfig(Section):
         defaults = ROBOT_EDGE_PUBLISH if robot else DEFAULT_PUBLISH[self.role]
         base = defaults if self.publish is None else self.publish
         rendered = CAMERA_TOPICS if self.role == "sim" and self.camera is not None else ()
-        return _merged(base, (*self.publish_also, *rendered))
+        topics = _merged(base, (*self.publish_also, *rendered))
+        if not self.hear_audio:
+            return topics
+        if self.role == "sim":  # the replies go out as audio, not as text
+            return _merged(tuple(t for t in topics if t != names.HEARD), (names.AUDIO,))
+        return _merged(topics, (names.HEARD,)) if self.role == "cloud" else topics
 
     def topics_in(self, robot: bool = False) -> tuple[str, ...]:
         defaults = ROBOT_EDGE_SUBSCRIBE if robot else DEFAULT_SUBSCRIBE[self.role]
         base = defaults if self.subscribe is None else self.subscribe
-        return _merged(base, self.subscribe_also)
+        topics = _merged(base, self.subscribe_also)
+        if not self.hear_audio or self.role == "sim":
+            return topics
+        # heard here: the audio comes in, the transcripts are this process's own, and the
+        # language listened for is the one the robot last spoke (/amiro/say, the edge's)
+        said = () if names.SAY in self.topics_out(robot) else (names.SAY,)
+        return _merged(tuple(t for t in topics if t != names.HEARD), (names.AUDIO, *said))
 
     def ros_node_name(self, process: str) -> str:
         return self.ros.node_name or f"amiro_{process}"

@@ -31,7 +31,12 @@ from amiro.deploy.tf import MapOdomNode, robot_frames
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import Understanding
 from amiro.dialogue.profiles import household_voices
-from amiro.dialogue.stack import build_understanding, text_hearing
+from amiro.dialogue.stack import (
+    add_microphone,
+    add_recognizer,
+    build_understanding,
+    text_hearing,
+)
 from amiro.environment.rules import RulesNode
 from amiro.environment.simulated import SimulatedSensorsNode
 from amiro.home.world import World, default_home_path
@@ -103,13 +108,17 @@ def build_sim_role(
     runtime.add(MapPublisher(grid))
     runtime.add(robot_frames(sim))  # /tf_static mounts and the head camera on /tf
     runtime.add(HeartbeatNode(process, node.heartbeat_s))
+    residents = household_voices(cfg.people())
+    microphone = add_microphone(runtime, cfg.dialogue, residents) if node.hear_audio else None
 
     def summary() -> dict[str, Any]:
         pose = sim.robot.true_pose
+        voiced = {} if microphone is None else {"voiced": [t for t, _ in microphone.voiced]}
         return {
             "pose": [round(pose.x, 3), round(pose.y, 3), round(pose.theta, 3)],
             "collisions": sim.robot.collisions,
             "replies": len(sim.residents.replies),
+            **voiced,
         }
 
     return RoleParts(summary)
@@ -136,12 +145,14 @@ def build_edge_role(
     if tracker is not None:  # the cloud's dashboard shows whom perception tracks
         runtime.add(TrackedPeoplePublisher(tracker))
     layer = edge_behaviors(runtime, process, node, cfg, world, navigation, senses)
+    heard = hearing(runtime, node, cfg)
 
     def summary() -> dict[str, Any]:
         return {
             "runs": [{"id": r.id, "outcome": r.outcome} for r in layer.engine.runs.values()],
             **senses_report(cfg, senses),
             "received": dict(feed.received),
+            **heard(),
         }
 
     return RoleParts(summary)
@@ -177,6 +188,14 @@ def edge_behaviors(
     return layer
 
 
+def hearing(runtime: Runtime, node: NodeConfig, cfg: SystemConfig) -> Callable[[], dict[str, Any]]:
+    """The recogniser of ``/amiro/audio`` when this process hears audio, and its report."""
+    if not node.hear_audio:
+        return dict
+    recognizer = add_recognizer(runtime, cfg.dialogue, household_voices(cfg.people()))
+    return lambda: {"recognized": list(recognizer.heard)}
+
+
 def senses_report(cfg: SystemConfig, senses: Senses) -> dict[str, Any]:
     """Which perception and activity backends ran, and how many people they placed."""
     finder = senses.perception
@@ -198,9 +217,11 @@ def build_cloud_role(
     ledger = runtime.add(NotificationLedger(store=store))
     watchdog = runtime.add(Watchdog(dict(node.watch)))
     services = add_cloud_services(runtime, node, cfg, home, sensors, rules)
+    heard = hearing(runtime, node, cfg)
 
     def summary() -> dict[str, Any]:
         return {
+            **heard(),
             "pending_notifications": sorted(ledger.pending),
             "redelivered": ledger.resent,
             **ledger.persistence(),

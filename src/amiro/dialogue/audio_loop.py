@@ -5,39 +5,38 @@ the recogniser heard, not on the simulator's text (``dialogue.hearing: audio``).
 
 Only the simulator's replies are voiced: they are the only :class:`SpeechHeard` that carry an
 intent label (its oracle); what a real microphone's recogniser publishes goes straight to the
-NLU.  One recogniser per language, built when its first reply is heard (the Whisper model
-under them is loaded then, once per process, about 1.5 s): a system that never hears a
-simulated reply, as most tests, never loads it."""
+NLU.  One recogniser per language of the household, built with the system (the Whisper model
+under them is loaded then, once per process, 1-5 s on this 2-core machine), as the NLU is
+warmed up then: a run is not slowed by loading when its first reply is heard."""
 
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 
 from amiro.core.messages import SpeechHeard
 from amiro.dialogue.asr import Recognizer
-from amiro.dialogue.audio import preprocess
-from amiro.dialogue.profiles import SpeakerProfile
-from amiro.dialogue.tts import Synthesizer
 from amiro.dialogue.understanding import Nlu
+from amiro.dialogue.voicing import Voicer
 
 
 class AudioLoopUnderstanding:
     def __init__(
         self,
         nlu: Nlu,
-        synthesizer: Synthesizer,
+        voicer: Voicer,
         recognizer_for: Callable[[str], Recognizer],
-        profiles: dict[str, SpeakerProfile],
+        langs: Iterable[str] = (),
     ) -> None:
         self.nlu = nlu
-        self.synthesizer = synthesizer
+        self.voicer = voicer
         self.recognizer_for = recognizer_for
-        self.profiles = profiles
         self.recognizers: dict[str, Recognizer] = {}
         self._lock = threading.Lock()
         self.heard: list[tuple[str, str]] = []  # (said, recognised), for reports and tests
+        for lang in langs:  # now, not at the first reply (another language: when heard)
+            self.recognizer(lang)
 
     def recognizer(self, lang: str) -> Recognizer:
         with self._lock:
@@ -48,12 +47,7 @@ class AudioLoopUnderstanding:
     def intent(self, heard: SpeechHeard) -> tuple[str, float]:
         if heard.intent is None:  # a real recogniser's result: already heard
             return self.nlu.intent(heard)
-        profile = self.profiles.get(heard.speaker or "") or SpeakerProfile(lang=heard.lang)
-        audio = self.synthesizer.synthesize(
-            heard.text, heard.lang, profile.voice, profile.words_per_minute
-        )
-        audio = preprocess(audio, profile.gain_db, profile.highpass_hz)
-        transcript = self.recognizer(heard.lang).transcribe(audio)
+        transcript = self.recognizer(heard.lang).transcribe(self.voicer.voice(heard))
         self.heard.append((heard.text, transcript.text))
         recognised = replace(
             heard, text=transcript.text, confidence=transcript.confidence, intent=None

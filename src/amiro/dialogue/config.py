@@ -79,7 +79,7 @@ class DialogueConfig(Section):
         "stories.yml, stories.<lang>.yml) replacing amiro's files it holds",
     )
     words_per_second: float = Field(default=2.5, gt=0.0)
-    hearing: Literal["audio", "text-oracle"] = Field(  # the single-process simulator only
+    hearing: Literal["audio", "text-oracle"] = Field(  # one process; split: hear_audio
         default="audio",
         description="in the simulator: audio voices each resident's reply (espeak-ng, their "
         "language) into the recogniser of their language; text-oracle hands the NLU the "

@@ -16,14 +16,17 @@ from amiro.dialogue.audio_loop import AudioLoopUnderstanding
 from amiro.dialogue.config import DialogueConfig
 from amiro.dialogue.domain import load_dm
 from amiro.dialogue.manager import DialogueManager
+from amiro.dialogue.microphone import SimMicrophone
 from amiro.dialogue.node import DialogueNode, TtsNode
 from amiro.dialogue.oracle import OracleUnderstanding
 from amiro.dialogue.output import BusSpeechOutput
 from amiro.dialogue.ports import SpeechOutput, Understanding
 from amiro.dialogue.profiles import SpeakerProfile
+from amiro.dialogue.recognizer_node import RecognizerNode
 from amiro.dialogue.sources import Sources, offline_sources
 from amiro.dialogue.tts import Synthesizer
 from amiro.dialogue.understanding import Nlu
+from amiro.dialogue.voicing import Voicer
 
 log = logging.getLogger(__name__)
 
@@ -59,10 +62,11 @@ def make_recognizer(
 
 
 def text_hearing(cfg: DialogueConfig) -> DialogueConfig:
-    """The configuration with the text oracle for the simulated replies: a split deployment's
-    understanding answers a service call of a few seconds (``amiro deploy``), too short for
-    voicing and recognising a reply on a loaded 2-core machine, so only the single-process
-    system hears the simulated residents."""
+    """The configuration with the text oracle for the simulated replies a process reads as
+    text: a split deployment's understanding answers a service call of a few seconds
+    (``amiro deploy``), too short for voicing and recognising a reply on a loaded 2-core
+    machine, so a split deployment hears audio through its microphone topic instead
+    (``hear_audio``: :func:`add_microphone`, :func:`add_recognizer`)."""
     return cfg.model_copy(update={"hearing": "text-oracle"})
 
 
@@ -98,7 +102,39 @@ def amiro_understanding(
     def recognizer_for(lang: str) -> Recognizer:
         return make_recognizer(cfg, "answers", lang, names)
 
-    return AudioLoopUnderstanding(nlu, synthesizer, recognizer_for, profiles)
+    voicer = Voicer(synthesizer, profiles)
+    return AudioLoopUnderstanding(nlu, voicer, recognizer_for, household_langs(profiles))
+
+
+def household_langs(profiles: dict[str, SpeakerProfile]) -> list[str]:
+    """The household's languages, the first person's first (what the robot starts in)."""
+    return list(dict.fromkeys(p.lang for p in profiles.values())) or ["en"]
+
+
+def add_microphone(
+    runtime: Runtime, cfg: DialogueConfig, profiles: dict[str, SpeakerProfile]
+) -> SimMicrophone:
+    """The simulated residents' replies voiced onto ``/amiro/audio``."""
+    voicer = Voicer(make_synthesizer(cfg), {**cfg.profiles, **profiles})
+    return runtime.add(SimMicrophone(voicer))
+
+
+def add_recognizer(
+    runtime: Runtime,
+    cfg: DialogueConfig,
+    profiles: dict[str, SpeakerProfile],
+    wait: bool = False,
+) -> RecognizerNode:
+    """The recogniser of ``/amiro/audio`` in the household's languages (the ``asr`` backend,
+    loaded now); a one-line ConfigError without the speech extra."""
+    profiles = {**cfg.profiles, **profiles}
+    people = sorted(profiles)
+    langs = household_langs(profiles)
+
+    def recognizer_for(lang: str, grammar: str) -> Recognizer:
+        return make_recognizer(cfg, grammar, lang, people)
+
+    return runtime.add(RecognizerNode(recognizer_for, langs, langs[0], wait))
 
 
 def oracle_understanding(

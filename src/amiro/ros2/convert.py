@@ -18,6 +18,7 @@ from pydantic import TypeAdapter
 
 from amiro.core.messages import (
     SKELETON_JOINTS,
+    AudioStamped,
     BehaviorEvent,
     CameraInfo,
     Header,
@@ -446,6 +447,63 @@ def bus_skeleton(msg: Any) -> Skeleton:
     return Skeleton(header, int(data["body_id"]), joints.reshape(SKELETON_JOINTS, 3), tracked)
 
 
+# --- audio (audio_common_msgs, mgonzs13/audio_common 4.0: the type whisper_ros hears) --------
+
+AUDIO_STAMPED = "audio_common_msgs/msg/AudioStamped"
+# PyAudio's sample formats, which AudioInfo.format carries: the AudioData field holding them
+# and the scale to 16-bit.
+_AUDIO_FORMATS: dict[int, tuple[str, float]] = {
+    1: ("float32_data", 32767.0),  # paFloat32, -1..1
+    2: ("int32_data", 1.0 / 65536.0),  # paInt32
+    8: ("int16_data", 1.0),  # paInt16
+    16: ("int8_data", 256.0),  # paInt8
+}
+PA_INT16 = 8
+PA_UINT8 = 32
+
+
+def ros_audio(types: MsgTypes, msg: AudioStamped, now: float) -> Any:
+    """Mono 16-bit samples as ``int16_data`` (format paInt16), one chunk per message."""
+    samples = np.asarray(msg.samples, dtype=np.int16)
+    data = types.make(
+        "audio_common_msgs/msg/AudioData",
+        float32_data=types.float32_seq([]),
+        int32_data=types.int32_seq([]),
+        int16_data=types.int16_seq(samples),
+        int8_data=types.int8_seq([]),
+        uint8_data=types.uint8_seq(b""),
+    )
+    info = types.make(
+        "audio_common_msgs/msg/AudioInfo",
+        format=PA_INT16,
+        channels=1,
+        rate=int(msg.rate),
+        chunk=len(samples),
+    )
+    audio = types.make("audio_common_msgs/msg/Audio", audio_data=data, info=info)
+    return types.make(AUDIO_STAMPED, header=ros_header(types, msg.header), audio=audio)
+
+
+def bus_audio(msg: Any) -> AudioStamped:
+    """Any of PyAudio's integer or float formats, any channel count (averaged to mono)."""
+    info, data = msg.audio.info, msg.audio.audio_data
+    fmt, channels, rate = int(info.format), int(info.channels), int(info.rate)
+    if rate <= 0 or channels <= 0:
+        raise ValueError(f"audio at {rate} Hz with {channels} channels")
+    if fmt == PA_UINT8:
+        x = (np.asarray(data.uint8_data, dtype=np.float64) - 128.0) * 256.0
+    elif fmt in _AUDIO_FORMATS:
+        field_name, scale = _AUDIO_FORMATS[fmt]
+        x = np.asarray(getattr(data, field_name), dtype=np.float64) * scale
+    else:
+        raise ValueError(f"unsupported audio format {fmt} (PyAudio's paInt16 = {PA_INT16})")
+    if len(x) % channels:
+        raise ValueError(f"{len(x)} samples do not split into {channels} channels")
+    mono = x.reshape(-1, channels).mean(axis=1)
+    samples = np.clip(np.round(mono), -32768, 32767).astype(np.int16)
+    return AudioStamped(bus_header(msg.header), samples, rate)
+
+
 STANDARD_CODECS: tuple[Codec[Any], ...] = (
     Codec(LaserScan, "sensor_msgs/msg/LaserScan", ros_scan, bus_scan),
     Codec(Odometry, "nav_msgs/msg/Odometry", ros_odometry, bus_odometry),
@@ -461,4 +519,5 @@ STANDARD_CODECS: tuple[Codec[Any], ...] = (
     Codec(BehaviorEvent, STRING, ros_event, bus_event),
     Codec(SpeechRequest, STRING, ros_say, bus_say),
     Codec(Skeleton, STRING, ros_skeleton, bus_skeleton),
+    Codec(AudioStamped, AUDIO_STAMPED, ros_audio, bus_audio),
 )

@@ -13,6 +13,7 @@ from amiro.core import names
 from amiro.core.config import ConfigError
 from amiro.core.messages import (
     Acknowledgement,
+    AudioStamped,
     BehaviorEvent,
     CameraInfo,
     Image,
@@ -70,6 +71,7 @@ ROUTES: dict[str, Route] = {
         Route(names.DEPTH, _standard(Image), depth=2),
         Route(names.CAMERA_INFO, _standard(CameraInfo), depth=2),
         Route(names.HEARD, json_codec(SpeechHeard), depth=50),
+        Route(names.AUDIO, _standard(AudioStamped), depth=100),  # the microphone's chunks
         Route(names.GROUND_TRUTH, _standard(Pose2D), depth=1),
         Route(names.LOCALIZATION, _standard(Pose2D), depth=1),
         Route(names.SKELETONS, _standard(Skeleton), depth=200),  # a person's history at once

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import array
 import importlib
+from pathlib import Path
 from typing import Any, Protocol
 
 import numpy as np
@@ -29,6 +30,14 @@ class MsgTypes(Protocol):
 
     def int8_seq(self, values: npt.ArrayLike) -> Any:
         """An unbounded ``int8[]`` field value."""
+        ...
+
+    def int16_seq(self, values: npt.ArrayLike) -> Any:
+        """An unbounded ``int16[]`` field value (audio samples)."""
+        ...
+
+    def int32_seq(self, values: npt.ArrayLike) -> Any:
+        """An unbounded ``int32[]`` field value."""
         ...
 
     def uint8_seq(self, data: bytes) -> Any:
@@ -64,6 +73,12 @@ class RclpyTypes:
     def int8_seq(self, values: npt.ArrayLike) -> Any:
         return array.array("b", np.asarray(values, dtype=np.int8).tobytes())
 
+    def int16_seq(self, values: npt.ArrayLike) -> Any:
+        return array.array("h", np.asarray(values, dtype=np.int16).tobytes())
+
+    def int32_seq(self, values: npt.ArrayLike) -> Any:
+        return array.array("i", np.asarray(values, dtype=np.int32).tobytes())
+
     def uint8_seq(self, data: bytes) -> Any:
         return array.array("B", data)
 
@@ -75,13 +90,24 @@ class RclpyTypes:
         return True
 
 
+# The .msg sources of the interface packages amiro ships (built for rclpy by msgbuild).
+INTERFACES_DIR = Path(__file__).resolve().parents[1] / "data" / "ros2_interfaces"
+
+
 class RosbagsTypes:
-    """rosbags' pure-Python typestore (ROS 2 Jazzy definitions); sequences as numpy arrays."""
+    """rosbags' pure-Python typestore (ROS 2 Jazzy definitions, and the interface packages
+    amiro ships that Jazzy's store lacks: audio_common_msgs); sequences as numpy arrays."""
 
     def __init__(self) -> None:
-        from rosbags.typesys import Stores, get_typestore
+        from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
         self.store = get_typestore(Stores.ROS2_JAZZY)
+        shipped: dict[str, Any] = {}
+        for msg in sorted(INTERFACES_DIR.glob("*/msg/*.msg")):
+            name = f"{msg.parent.parent.name}/msg/{msg.stem}"
+            if name not in self.store.types:
+                shipped.update(get_types_from_msg(msg.read_text("utf-8"), name))
+        self.store.register(shipped)
 
     def make(self, type_name: str, **fields: Any) -> Any:
         return self.store.types[type_name](**fields)
@@ -94,6 +120,12 @@ class RosbagsTypes:
 
     def int8_seq(self, values: npt.ArrayLike) -> Any:
         return np.asarray(values, dtype=np.int8)
+
+    def int16_seq(self, values: npt.ArrayLike) -> Any:
+        return np.asarray(values, dtype=np.int16)
+
+    def int32_seq(self, values: npt.ArrayLike) -> Any:
+        return np.asarray(values, dtype=np.int32)
 
     def uint8_seq(self, data: bytes) -> Any:
         return np.frombuffer(data, dtype=np.uint8).copy()

@@ -18,7 +18,8 @@ from pathlib import Path
 from amiro.ros2.msgbuild.compile import build, plan_targets
 from amiro.ros2.msgbuild.generate import generate_sources
 from amiro.ros2.msgbuild.install import install, is_current
-from amiro.ros2.msgbuild.package import INTERFACES_DIR, load_package
+from amiro.ros2.msgbuild.package import load_package
+from amiro.ros2.types import INTERFACES_DIR
 
 __all__ = ["BuildResult", "build_package"]
 

@@ -1,11 +1,12 @@
 """The interface packages amiro ships as ``.msg``/``.srv``/``.action`` sources, and what each
 depends on.
 
-ROS 2 interface packages missing from PyPI (tf2_msgs, nav2_msgs, hri_msgs) and amiro's own
-(amiro_interfaces) are kept in ``amiro/data/ros2_interfaces/<package>/{msg,srv,action}/``
-with their upstream licence; the packages their fields refer to (geometry_msgs...) must
-already be installed in the ROS prefix.  Services and actions also depend on the packages
-rosidl's expansion of them uses (the service event, the goal id, the goal status).
+ROS 2 interface packages missing from PyPI (tf2_msgs, audio_common_msgs, nav2_msgs, hri_msgs)
+and amiro's own (amiro_interfaces) are kept in
+``amiro/data/ros2_interfaces/<package>/{msg,srv,action}/`` with their upstream licence; the
+packages their fields refer to (geometry_msgs...) must already be installed in the ROS prefix.
+Services and actions also depend on the packages rosidl's expansion of them uses (the service
+event, the goal id, the goal status).
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ from rosidl_adapter.parser import (
 )
 
 from amiro.core.config import ConfigError
+from amiro.ros2.types import INTERFACES_DIR
 
-INTERFACES_DIR = Path(__file__).resolve().parents[2] / "data" / "ros2_interfaces"
 KINDS = {"msg": ".msg", "srv": ".srv", "action": ".action"}
 # what rosidl's expansion of a service (its event message) or an action brings in
 IMPLIED = {
