@@ -63,7 +63,7 @@ class SkeletonsSection(Section):
 
     The default is still the ideal sensor: with the realistic one RecognizeActivity (3 of
     the last 5 readings) completes hydration in every single-process run measured, but
-    in 3 of 48 runs of the split-deployment tests, paced by the wall clock, hydration ended
+    in 3 (perhaps 4) of 48 runs of the split-deployment tests, paced by the wall clock, it ended
     "confirmed by voice" (docs/simulator.md)."""
 
     noise_m: float = Field(
