@@ -4,6 +4,10 @@ As section 5 of the paper proposes, the robot frames the person the way the mode
 training data did: it drives the base backwards (box too big or cut by the image edge) or
 forwards (box too small) until the person's box fills the trained share of the image, and
 it gives up early, for a spoken confirmation, when the skeleton stays too incomplete.
+It decides from several sightings, not one: ``confirmations`` of the last ``of_last``
+readings that named an activity must be the expected one, so a real sensor's flicker
+(a drink read as a cough now and then) does not reset the count, and a reading of no
+activity (``unknown``, unsure, too few joints) counts neither way.
 The base moves through navigation's forward action (``names.FORWARD``), never on
 ``/cmd_vel`` itself, so the velocity multiplexer and its emergency stop govern it.
 """
@@ -11,9 +15,10 @@ The base moves through navigation's forward action (``names.FORWARD``), never on
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections import deque
+from typing import Any, Self
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from amiro.behavior.task import Task, TaskContext, TaskParams, TaskStatus, log
 from amiro.behavior.tasks.gaze import look_at
@@ -25,7 +30,8 @@ from amiro.navigation.primitives import ForwardGoal
 
 class RecognizeActivity(Task):
     """params: ``person``, ``activity`` (e.g. drink_water), ``timeout_s`` (default 30),
-    ``confirmations`` (consecutive sightings needed, default 3), ``period_s`` (default 0.5),
+    ``confirmations`` (sightings needed, default 3) among the last ``of_last`` readings
+    that named an activity (default 5), ``period_s`` (default 0.5),
     ``look_at`` (a map point: the head turns to it, e.g. ``$person_position``),
     ``incomplete_timeout_s`` (give up this long without a usable skeleton, default 10),
     ``reframe`` (move the base to the trained framing, default true), ``reframe_speed``
@@ -41,12 +47,22 @@ class RecognizeActivity(Task):
         activity: str = "drink_water"
         timeout_s: float = Field(30.0, ge=0)
         confirmations: int = Field(3, ge=1)
+        of_last: int = Field(5, ge=1)
         period_s: float = Field(0.5, gt=0)
         look_at: Point | None = None
         incomplete_timeout_s: float = Field(10.0, ge=0)
         reframe: bool = True
         reframe_speed: float = Field(0.15, ge=0)
         max_reframe_m: float = Field(1.0, ge=0)
+
+        @model_validator(mode="after")
+        def _enough_readings(self) -> Self:
+            if self.of_last < self.confirmations:
+                raise ValueError(
+                    f"of_last ({self.of_last}) must be at least confirmations "
+                    f"({self.confirmations})"
+                )
+            return self
 
     def start(self, ctx: TaskContext) -> None:
         p = self.bind(ctx, self.Params)
@@ -60,7 +76,7 @@ class RecognizeActivity(Task):
         self.speed = p.reframe_speed
         self.budget = p.max_reframe_m
         self.next_look = ctx.now()
-        self.streak = 0
+        self.recent: deque[str] = deque(maxlen=p.of_last)  # the last labelled readings
         self.current = ""  # the label the recogniser gave last (for feedback)
         self.complete_seen = False
         self.labels: dict[str, int] = {}
@@ -88,8 +104,8 @@ class RecognizeActivity(Task):
             self.current = reading.label or ""
             if reading.label is not None:
                 self.labels[reading.label] = self.labels.get(reading.label, 0) + 1
-            self.streak = self.streak + 1 if reading.label == self.activity else 0
-            if self.streak >= self.needed:
+                self.recent.append(reading.label)
+            if self.recent.count(self.activity) >= self.needed:
                 self._stop(ctx)
                 self.detail = {
                     "activity": self.activity,
