@@ -87,6 +87,8 @@ def test_a_plain_client_runs_recognize_activity_on_the_engine(domain_id: int) ->
         missed = _send_goal(
             runtime, domain_id, {"person": "anna", "activity": "walk", "timeout_s": 2.0}
         )
+        # 3 sightings cannot come out of the last 2 readings
+        impossible = _send_goal(runtime, domain_id, {"person": "anna", "of_last": 2})
     finally:
         runtime.stop()
         ros.close()
@@ -98,6 +100,8 @@ def test_a_plain_client_runs_recognize_activity_on_the_engine(domain_id: int) ->
     assert feedback.index(("typing", 0)) < feedback.index(("drink_water", 2))
     assert missed["accepted"] and missed["status"] == ABORTED
     assert missed["result"] == {"recognised": False, "outcome": "not_recognised"}
+    assert impossible["status"] == ABORTED and impossible["feedback"] == []
+    assert impossible["result"] == {"recognised": False, "outcome": "rejected"}
     assert [r.type for r in engine.records] == ["RecognizeActivity", "RecognizeActivity"]
     assert exporter.active == {} and exporter.stats.errors == 0
 

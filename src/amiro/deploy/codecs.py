@@ -187,13 +187,18 @@ class RecognizeActivityCodec(
             activity=goal.activity,
             timeout_s=float(goal.timeout_s),
             confirmations=int(goal.confirmations),
+            of_last=int(goal.of_last),
         )
 
     def goal_from_ros(self, msg: Any) -> RecognizeActivityGoal:
         if not str(msg.person):
             raise WireError("a RecognizeActivity goal needs a person")
         return RecognizeActivityGoal(
-            str(msg.person), str(msg.activity), float(msg.timeout_s), int(msg.confirmations)
+            str(msg.person),
+            str(msg.activity),
+            float(msg.timeout_s),
+            int(msg.confirmations),
+            int(msg.of_last),
         )
 
     def feedback_to_ros(self, feedback: RecognizeActivityFeedback, elapsed_s: float) -> Any:

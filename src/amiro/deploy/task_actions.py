@@ -56,12 +56,13 @@ class RecognizeActivityGoal:
     activity: str = "drink_water"
     timeout_s: float = 30.0
     confirmations: int = 3
+    of_last: int = 5
 
 
 @dataclass(frozen=True)
 class RecognizeActivityFeedback:
     current: str  # the label the recogniser gives now ("" none)
-    confirmations: int  # consecutive sightings of the expected activity so far
+    confirmations: int  # sightings of the expected activity among the last of_last readings
 
 
 @dataclass(frozen=True)
@@ -135,10 +136,11 @@ class RecognizeActivityAction(
             "activity": goal.activity,
             "timeout_s": goal.timeout_s,
             "confirmations": goal.confirmations,
+            "of_last": goal.of_last,
         }
 
     def feedback(self, task: Any) -> RecognizeActivityFeedback:
-        return RecognizeActivityFeedback(task.current, task.streak)
+        return RecognizeActivityFeedback(task.current, task.recent.count(task.activity))
 
     def result(self, run: GraphRun) -> RecognizeActivityResult:
         if run.outcome == COMPLETED:
