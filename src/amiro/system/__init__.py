@@ -18,7 +18,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from pydantic import Field
 
-import amiro.behavior.tasks  # noqa: F401 - registers the task types
+# importing registers the task types, the plans' steps (Sequence, CheckDoor) among them
+import amiro.behavior.planning.tasks
+import amiro.behavior.tasks  # noqa: F401
 from amiro.activity.config import ActivityConfig
 from amiro.activity.fall import FallMonitorNode
 from amiro.activity.ports import ActivityRecognizer

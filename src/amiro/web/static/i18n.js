@@ -46,7 +46,7 @@ const STRINGS = {
     ev_plan_completed: "Errand completed ({plans} plan(s))", ev_chat: "{who}: {text}",
     someone: "someone",
     w_done: "done", w_postponed: "postponed", w_failed: "failed", w_completed: "completed", w_cancelled: "cancelled", w_person_not_found: "person not found", w_person_unreachable: "person unreachable", w_not_confirmed: "not confirmed", w_confirmed_by_voice: "confirmed by voice", w_success: "succeeded", w_failure: "failed", w_preempted: "preempted", w_drink_water: "drinking water", w_standing_up: "standing up", w_hand_waving: "waving", w_play_phone: "on the phone", w_typing: "typing", w_pointing: "pointing", w_sneeze_cough: "sneezing or coughing", w_touch_chest: "touching the chest", w_falling: "falling", w_idle: "resting", w_living_room: "living room", w_kitchen: "kitchen", w_bedroom: "bedroom", w_bathroom: "bathroom", w_hallway: "hallway", w_steps: "steps", w_hydration: "hydration", w_fall: "fall", w_go_to: "go to",
-    w_Say: "Say", w_Display: "Show on screen", w_MoveTo: "Go to", w_Wait: "Wait", w_Search: "Search for a person", w_Listen: "Listen", w_RecognizeActivity: "Watch the activity", w_NotifyEnvironment: "Report to the home", w_Check: "Check a condition",
+    w_Say: "Say", w_Display: "Show on screen", w_MoveTo: "Go to", w_Wait: "Wait", w_Search: "Search for a person", w_Listen: "Listen", w_RecognizeActivity: "Watch the activity", w_NotifyEnvironment: "Report to the home", w_Check: "Check a condition", w_CheckDoor: "Check a door", w_Sequence: "Steps one after another",
   },
   fr: {
     title: "Tableau de bord amiro", signin_title: "amiro — connexion", user: "Utilisateur", password: "Mot de passe",
@@ -88,7 +88,7 @@ const STRINGS = {
     ev_plan_completed: "Course terminée ({plans} plan(s))", ev_chat: "{who} : {text}",
     someone: "quelqu'un",
     w_done: "fait", w_postponed: "reporté", w_failed: "échec", w_completed: "terminé", w_cancelled: "annulé", w_person_not_found: "personne introuvable", w_person_unreachable: "personne inaccessible", w_not_confirmed: "non confirmé", w_confirmed_by_voice: "confirmé à la voix", w_success: "réussie", w_failure: "échouée", w_preempted: "interrompue", w_drink_water: "boit de l'eau", w_standing_up: "se lève", w_hand_waving: "fait signe", w_play_phone: "au téléphone", w_typing: "tape au clavier", w_pointing: "montre du doigt", w_sneeze_cough: "éternue ou tousse", w_touch_chest: "se touche la poitrine", w_falling: "tombe", w_idle: "se repose", w_living_room: "salon", w_kitchen: "cuisine", w_bedroom: "chambre", w_bathroom: "salle de bain", w_hallway: "couloir", w_steps: "pas", w_hydration: "hydratation", w_fall: "chute", w_go_to: "aller à",
-    w_Say: "Dire", w_Display: "Afficher à l’écran", w_MoveTo: "Aller à", w_Wait: "Attendre", w_Search: "Chercher une personne", w_Listen: "Écouter", w_RecognizeActivity: "Observer l’activité", w_NotifyEnvironment: "Informer la maison", w_Check: "Vérifier une condition",
+    w_Say: "Dire", w_Display: "Afficher à l’écran", w_MoveTo: "Aller à", w_Wait: "Attendre", w_Search: "Chercher une personne", w_Listen: "Écouter", w_RecognizeActivity: "Observer l’activité", w_NotifyEnvironment: "Informer la maison", w_Check: "Vérifier une condition", w_CheckDoor: "Vérifier une porte", w_Sequence: "Étapes l’une après l’autre",
   },
   ro: {
     title: "Panoul amiro", signin_title: "amiro — autentificare", user: "Utilizator", password: "Parolă",
@@ -130,7 +130,7 @@ const STRINGS = {
     ev_plan_completed: "Sarcină încheiată ({plans} plan(uri))", ev_chat: "{who}: {text}",
     someone: "cineva",
     w_done: "făcut", w_postponed: "amânat", w_failed: "eșuat", w_completed: "încheiat", w_cancelled: "anulat", w_person_not_found: "persoana nu a fost găsită", w_person_unreachable: "persoana nu poate fi atinsă", w_not_confirmed: "neconfirmat", w_confirmed_by_voice: "confirmat vocal", w_success: "reușită", w_failure: "eșuată", w_preempted: "întreruptă", w_drink_water: "bea apă", w_standing_up: "se ridică", w_hand_waving: "face cu mâna", w_play_phone: "la telefon", w_typing: "tastează", w_pointing: "arată cu degetul", w_sneeze_cough: "strănută sau tușește", w_touch_chest: "își atinge pieptul", w_falling: "cade", w_idle: "se odihnește", w_living_room: "sufragerie", w_kitchen: "bucătărie", w_bedroom: "dormitor", w_bathroom: "baie", w_hallway: "hol", w_steps: "pași", w_hydration: "hidratare", w_fall: "cădere", w_go_to: "deplasare",
-    w_Say: "Spune", w_Display: "Afișează pe ecran", w_MoveTo: "Mergi la", w_Wait: "Așteaptă", w_Search: "Caută o persoană", w_Listen: "Ascultă", w_RecognizeActivity: "Urmărește activitatea", w_NotifyEnvironment: "Anunță casa", w_Check: "Verifică o condiție",
+    w_Say: "Spune", w_Display: "Afișează pe ecran", w_MoveTo: "Mergi la", w_Wait: "Așteaptă", w_Search: "Caută o persoană", w_Listen: "Ascultă", w_RecognizeActivity: "Urmărește activitatea", w_NotifyEnvironment: "Anunță casa", w_Check: "Verifică o condiție", w_CheckDoor: "Verifică o ușă", w_Sequence: "Pași unul după altul",
   },
 };
 
