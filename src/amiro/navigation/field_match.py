@@ -108,7 +108,7 @@ class LikelihoodField:
             step[:2] = np.clip(step[:2], -0.1, 0.1)
             step[2] = float(np.clip(step[2], -0.05, 0.05))
             xi = xi + step
-            if abs(step[0]) + abs(step[1]) < 1e-4 and abs(step[2]) < 1e-5:
+            if abs(step[0]) + abs(step[1]) < 1e-3 and abs(step[2]) < 1e-4:
                 break
         pose = Pose2D(float(xi[0]), float(xi[1]), wrap_angle(float(xi[2])))
         return FieldMatch(pose, scan_info)

@@ -124,7 +124,9 @@ class SubmapFrontEnd:
         ):
             start = correlative_guess(coarse, px, py, guess, window, p.search_sigmas)
         weight = p.odom_weight if odom is not None else 0.0
-        matched = match_scan(levels, px, py, start, weight, p.iterations)
+        # with the field refinement after it, Hector's finest level adds nothing but time
+        hector = levels[1:] if p.field_sigma > 0.0 and len(levels) > 1 else levels
+        matched = match_scan(hector, px, py, start, weight, p.iterations)
         if p.field_sigma > 0.0:
             field = LikelihoodField.around_scan(
                 levels[0], px, py, matched, FIELD_MARGIN_M, p.field_sigma
