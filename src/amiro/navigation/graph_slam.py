@@ -18,6 +18,7 @@ import numpy.typing as npt
 
 from amiro.core.gridmap import GridMap
 from amiro.core.messages import Pose2D
+from amiro.navigation.field_match import FIELD_SIGMA_M
 from amiro.navigation.loop_closure import LoopCloser, LoopParams
 from amiro.navigation.occupancy import LogOddsGrid
 from amiro.navigation.posegraph import PoseGraph
@@ -47,6 +48,7 @@ def tracking_params(max_range: float = 12.0) -> SlamParams:
         free_margin=LIDAR_FREE_MARGIN,
         clamp=TRACKING_CLAMP,
         gate_sigmas=GATE_SIGMAS,
+        field_sigma=FIELD_SIGMA_M,
     )
 
 

@@ -42,6 +42,8 @@ class SlamParams:
     odom_sigma_theta: tuple[float, float, float] = (0.01, 0.03, 0.1)
     search_sigmas: float = 3.0  # half-width of the correlative search around the guess
     gate_sigmas: float = math.inf  # a match this many sigmas from the odometry guess is refused
+    # > 0: refine on a likelihood field blurred this much (m; see field_match.py)
+    field_sigma: float = 0.0
 
 
 class HectorSlam:
