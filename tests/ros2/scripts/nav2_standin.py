@@ -82,21 +82,12 @@ def main() -> None:
             fb.current_pose.pose.position.y = msg.feedback.pose.y
             goal_handle.publish_feedback(fb)
 
-        while not robot.server_is_ready():
-            await sleep_a_little()
-        sent = await wait(robot.send_goal_async(goal, feedback_callback=relay))
-        if not sent.accepted:
+        response = await relay_to(robot, goal, goal_handle, relay)
+        if response is None:
             result.error_code, result.error_msg = NO_VALID_PATH, "robot refused the goal"
             goal_handle.abort()
             counts["aborted"] += 1
             return result
-        answer = sent.get_result_async()
-        while not answer.done():
-            if goal_handle.is_cancel_requested:
-                await wait(sent.cancel_goal_async())
-                break
-            await sleep_a_little()
-        response = await wait(answer)
         if goal_handle.is_cancel_requested:
             goal_handle.canceled()
             counts["canceled"] += 1
