@@ -10,8 +10,8 @@ any other), reports the task's own progress as feedback and ends the goal with i
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
-from typing import Any, Generic, TypeVar
+from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from amiro.behavior.engine import BehaviorEngine, GraphRun
 from amiro.behavior.task import Task, TaskError
@@ -21,7 +21,10 @@ from amiro.core.messages import Point
 from amiro.core.node import Node
 from amiro.web.robot import single_task_graph
 
-G = TypeVar("G")
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
+
+G = TypeVar("G", bound="DataclassInstance")
 F = TypeVar("F")
 R = TypeVar("R")
 PRIORITY = 3  # as a single task asked for on the dashboard
@@ -86,8 +89,9 @@ class TaskAction(ABC, Generic[G, F, R]):
     name: str
     task_type: str
 
-    @abstractmethod
-    def params(self, goal: G) -> dict[str, Any]: ...
+    def params(self, goal: G) -> dict[str, Any]:
+        """The goal's fields are the task's parameters of the same names."""
+        return asdict(goal)
 
     @abstractmethod
     def feedback(self, task: Any) -> F: ...
@@ -102,14 +106,6 @@ class TaskAction(ABC, Generic[G, F, R]):
 class SearchAction(TaskAction[SearchGoal, SearchFeedback, SearchResult]):
     name = names.SEARCH
     task_type = "Search"
-
-    def params(self, goal: SearchGoal) -> dict[str, Any]:
-        return {
-            "person": goal.person,
-            "dwell_s": goal.dwell_s,
-            "sightings": goal.sightings,
-            "side_steps": goal.side_steps,
-        }
 
     def feedback(self, task: Any) -> SearchFeedback:
         return SearchFeedback(task.room, task.step)
@@ -129,15 +125,6 @@ class RecognizeActivityAction(
 ):
     name = names.RECOGNIZE_ACTIVITY
     task_type = "RecognizeActivity"
-
-    def params(self, goal: RecognizeActivityGoal) -> dict[str, Any]:
-        return {
-            "person": goal.person,
-            "activity": goal.activity,
-            "timeout_s": goal.timeout_s,
-            "confirmations": goal.confirmations,
-            "of_last": goal.of_last,
-        }
 
     def feedback(self, task: Any) -> RecognizeActivityFeedback:
         return RecognizeActivityFeedback(task.current, task.recent.count(task.activity))
