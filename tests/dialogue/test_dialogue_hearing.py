@@ -12,7 +12,7 @@ from amiro.core.messages import SpeechHeard
 from amiro.dialogue.audio_loop import AudioLoopUnderstanding
 from amiro.dialogue.config import AsrConfig, DialogueConfig
 from amiro.dialogue.profiles import SpeakerProfile
-from amiro.dialogue.stack import amiro_understanding
+from amiro.dialogue.stack import Dialogue, amiro_understanding
 from amiro.dialogue.understanding import Nlu
 
 MARIA = {"maria": SpeakerProfile(lang="fr")}
@@ -30,6 +30,9 @@ def test_the_default_hears_audio_and_the_oracle_is_named() -> None:
     assert loop.intent(SpeechHeard("oui, bien sûr", "fr", "maria", intent="affirm"))[0] == "affirm"
     ((said, recognised),) = loop.heard
     assert said == "oui, bien sûr" and "oui" in recognised.lower()
+    # what a scenario's report names
+    assert Dialogue(None, loop, None, None).hearing == "audio"  # type: ignore[arg-type]
+    assert Dialogue(None, nlu, None, None).hearing == "text-oracle"  # type: ignore[arg-type]
 
 
 def test_without_the_speech_extra_the_text_oracle_is_said_once(

@@ -165,4 +165,5 @@ def test_cli_prints_one_json_object() -> None:
     report = json.loads(proc.stdout)
     for key in ("scenario", "outcome", "sim_time_s", "wall_time_s", "steps", "events"):
         assert key in report
+    assert report["hearing"] == "audio"  # the default; CI installs the speech extra
     assert report["outcome"] == "postponed"

@@ -39,6 +39,12 @@ class Dialogue:
     node: DialogueNode
     tts: TtsNode | None = None
 
+    @property
+    def hearing(self) -> str:
+        """``audio`` when the residents' replies are voiced and recognised, else
+        ``text-oracle`` (chosen, or the speech stack missing): a report says which."""
+        return "audio" if isinstance(self.nlu, AudioLoopUnderstanding) else "text-oracle"
+
 
 def make_synthesizer(cfg: DialogueConfig) -> Synthesizer:
     """The TTS engine ``tts.backend`` names (:mod:`amiro.dialogue.backends`)."""

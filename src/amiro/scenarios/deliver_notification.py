@@ -117,6 +117,7 @@ def run_delivery(opts: DeliveryOptions) -> dict[str, Any]:
         "closed_doors": list(opts.closed_doors),
         "help": opts.help,
         "check_activity": opts.check_activity,
+        "hearing": done.system.dialogue.hearing,
         **done.timing(),
         "steps": [r.to_dict() for run in executive.runs for r in run.records],
         "plans": [p.to_dict() for p in executive.plans],

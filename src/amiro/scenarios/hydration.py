@@ -116,6 +116,7 @@ def run_hydration(opts: HydrationOptions) -> dict[str, Any]:
         "branch": opts.branch or "default",
         "seed": opts.seed,
         "lang": opts.lang,
+        "hearing": system.dialogue.hearing,
         **done.timing(),
         "steps": [r.to_dict() for r in run.records] if run else [],
         "acks": [{"id": a.id, "status": a.status, "ts": a.ts} for a in recorder.acks],
