@@ -308,6 +308,16 @@ def nav2_reason(error_code: int, error_msg: str) -> str:
     return f"nav2_error_{error_code}{detail}"
 
 
+def nav2_outcome(msg: Any, status: GoalStatus, done: str) -> tuple[bool, str]:
+    """A Nav2 action's result as (success, reason): ``done`` when it succeeded, ``canceled``,
+    or the reason its error code maps to (:func:`nav2_reason`)."""
+    if status is GoalStatus.SUCCEEDED:
+        return True, done
+    if status is GoalStatus.CANCELED:
+        return False, "canceled"
+    return False, nav2_reason(int(msg.error_code), str(msg.error_msg))
+
+
 def duration(msg: Any, seconds: float) -> Any:
     whole = max(0.0, seconds)
     msg.sec = int(whole)
@@ -401,11 +411,7 @@ class NavigateToPoseCodec(ActionCodec[MoveToGoal, MoveToFeedback, MoveToResult])
         return self.action.Result(error_code=NAV2_CODES.get(reason, NAV2_UNKNOWN), error_msg=reason)
 
     def result_from_ros(self, msg: Any, status: GoalStatus) -> MoveToResult:
-        if status is GoalStatus.SUCCEEDED:
-            return MoveToResult(True, "arrived")
-        if status is GoalStatus.CANCELED:
-            return MoveToResult(False, "canceled")
-        return MoveToResult(False, nav2_reason(int(msg.error_code), str(msg.error_msg)))
+        return MoveToResult(*nav2_outcome(msg, status, "arrived"))
 
     def failure(self, reason: str) -> MoveToResult:
         return MoveToResult(False, reason)

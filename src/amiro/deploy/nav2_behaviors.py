@@ -14,7 +14,7 @@ from typing import Any
 
 from amiro.core import names
 from amiro.core.bus import GoalStatus
-from amiro.deploy.codecs import duration, nav2_reason
+from amiro.deploy.codecs import duration, nav2_outcome
 from amiro.navigation.primitives import ForwardGoal, PrimitiveResult, RotateGoal
 from amiro.ros2.interfaces import ActionCodec, WireError
 
@@ -35,11 +35,7 @@ class _Nav2Behavior(ActionCodec[Any, float, PrimitiveResult]):
         return self.action.Result(error_code=self.unknown, error_msg=reason)
 
     def result_from_ros(self, msg: Any, status: GoalStatus) -> PrimitiveResult:
-        if status is GoalStatus.SUCCEEDED:
-            return PrimitiveResult(True, "done")
-        if status is GoalStatus.CANCELED:
-            return PrimitiveResult(False, "canceled")
-        return PrimitiveResult(False, nav2_reason(int(msg.error_code), str(msg.error_msg)))
+        return PrimitiveResult(*nav2_outcome(msg, status, "done"))
 
     def failure(self, reason: str) -> PrimitiveResult:
         return PrimitiveResult(False, reason)
